@@ -1,0 +1,104 @@
+// The oracle: every sector whose edges lie on tap coordinates or the domain
+// edges, counted with a 2-D prefix table. Deliberately uses none of the
+// lattice structure that the fast evaluator relies on.
+#include <algorithm>
+#include <vector>
+
+#include "lattice.hpp"
+
+namespace spiral {
+namespace {
+
+class PrefixCounts {
+public:
+    explicit PrefixCounts(const detail::SpiralLattice& lattice)
+        : cols_(lattice.two_n + 1), rows_(lattice.two_n + 2), table_(cols_ * rows_, 0) {
+        // table_(x, y) = number of taps with radial < x and angular < y.
+        std::vector<std::int64_t> grid(cols_ * rows_, 0);
+        for (std::int64_t i = 0; i < lattice.n; ++i)
+            grid[index(lattice.radial(i) + 1, lattice.angular(i) + 1)] += 1;
+        for (std::int64_t x = 1; x < rows_; ++x)
+            for (std::int64_t y = 1; y < cols_; ++y)
+                table_[index(x, y)] = grid[index(x, y)] + table_[index(x - 1, y)] +
+                                      table_[index(x, y - 1)] - table_[index(x - 1, y - 1)];
+        two_n_ = lattice.two_n;
+    }
+
+    // Taps with radial in [x_lo, x_hi] and angular among the `length` positions
+    // starting at y_start (cyclic). Empty if x_lo > x_hi or length <= 0.
+    std::int64_t count(std::int64_t x_lo, std::int64_t x_hi, std::int64_t y_start,
+                       std::int64_t length) const {
+        x_lo = std::max<std::int64_t>(x_lo, 0);
+        x_hi = std::min(x_hi, two_n_);
+        if (x_lo > x_hi || length <= 0) return 0;
+        length = std::min(length, two_n_);
+        y_start %= two_n_;
+        const std::int64_t y_end = y_start + length;  // exclusive
+        if (y_end <= two_n_) return rect(x_lo, x_hi, y_start, y_end);
+        return rect(x_lo, x_hi, y_start, two_n_) + rect(x_lo, x_hi, 0, y_end - two_n_);
+    }
+
+private:
+    std::int64_t index(std::int64_t x, std::int64_t y) const { return x * cols_ + y; }
+    // radial in [x_lo, x_hi], angular in [y_lo, y_hi)
+    std::int64_t rect(std::int64_t x_lo, std::int64_t x_hi, std::int64_t y_lo, std::int64_t y_hi) const {
+        return table_[index(x_hi + 1, y_hi)] - table_[index(x_lo, y_hi)] -
+               table_[index(x_hi + 1, y_lo)] + table_[index(x_lo, y_lo)];
+    }
+
+    std::int64_t cols_, rows_, two_n_ = 0;
+    std::vector<std::int64_t> table_;
+};
+
+}  // namespace
+
+Discrepancy discrepancy_brute_force(int n, int tau) {
+    detail::require_valid(n, tau);
+    const detail::SpiralLattice lattice(n, tau);
+    const PrefixCounts counts(lattice);
+    const std::int64_t two_n = lattice.two_n, four_n = 4 * lattice.n;
+
+    std::vector<std::int64_t> radial_edges{0, two_n};
+    std::vector<std::int64_t> angular_edges;
+    for (std::int64_t i = 0; i < lattice.n; ++i) {
+        radial_edges.push_back(lattice.radial(i));
+        angular_edges.push_back(lattice.angular(i));
+    }
+    std::sort(radial_edges.begin(), radial_edges.end());
+    std::sort(angular_edges.begin(), angular_edges.end());
+    angular_edges.erase(std::unique(angular_edges.begin(), angular_edges.end()), angular_edges.end());
+
+    Discrepancy result{n, tau, -1, {}};
+    auto consider = [&](const Sector& sector) {
+        const std::int64_t excess = sector.closed ? four_n * sector.count - sector.scaled_area()
+                                                  : sector.scaled_area() - four_n * sector.count;
+        if (excess > result.scaled) {
+            result.scaled = excess;
+            result.worst = sector;
+        }
+    };
+
+    for (std::size_t lo = 0; lo < radial_edges.size(); ++lo) {
+        for (std::size_t hi = lo; hi < radial_edges.size(); ++hi) {
+            const std::int64_t a = radial_edges[lo], b = radial_edges[hi];
+            for (const std::int64_t start : angular_edges) {
+                // Arc lengths reaching every other edge, plus the whole circle.
+                std::vector<std::int64_t> lengths{two_n};
+                for (const std::int64_t end : angular_edges)
+                    lengths.push_back(((end - start) % two_n + two_n) % two_n);
+                for (const std::int64_t length : lengths) {
+                    Sector closed{true, a, b, start, length, counts.count(a, b, start, length + 1)};
+                    consider(closed);
+                    if (a < b && length > 0) {
+                        Sector open{false, a, b, start, length,
+                                    counts.count(a + 1, b - 1, start + 1, length - 1)};
+                        consider(open);
+                    }
+                }
+            }
+        }
+    }
+    return result;
+}
+
+}  // namespace spiral
