@@ -1,0 +1,55 @@
+// spiralgen blur: the GLSL header holding the bilateral blur's Gaussian weights.
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "commands.hpp"
+#include "spiral/codegen.hpp"
+
+namespace spiralgen {
+namespace {
+
+struct BlurArgs {
+    int radius = -1;
+    std::optional<double> sigma;
+    std::string out;
+};
+
+void run_blur(const BlurArgs& args) {
+    namespace codegen = spiral::codegen;
+    codegen::BlurKernel kernel;
+    try {
+        kernel = codegen::gaussian_kernel(args.radius, args.sigma);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(fmt::format("{} (--radius / --sigma)", e.what()));
+    }
+    // Recorded canonically and without --out, like every generated file.
+    std::string command = fmt::format("spiralgen blur --radius {}", args.radius);
+    if (args.sigma) command += fmt::format(" --sigma {}", *args.sigma);
+
+    const std::string text = codegen::format_blur_header(kernel, codegen::Provenance{command});
+    if (args.out.empty())
+        fmt::print("{}", text);
+    else
+        codegen::write_file_atomically(args.out, text);
+}
+
+}  // namespace
+
+void add_blur_command(CLI::App& app) {
+    auto args = std::make_shared<BlurArgs>();
+    CLI::App* command = app.add_subcommand(
+        "blur", "Write the GLSL header with the normalised Gaussian weights of the blur");
+    command->add_option("--radius", args->radius, "Kernel radius in pixels (taps -R..R), 0 to 1024")
+        ->required();
+    command->add_option("--sigma", args->sigma,
+                        "Standard deviation in pixels (default: radius / 2)");
+    command->add_option("--out", args->out,
+                        "Write to this file (atomically) instead of standard output");
+    command->callback([args] { run_blur(*args); });
+}
+
+}  // namespace spiralgen
