@@ -1,0 +1,22 @@
+// The spiralgen subcommands. Each registers itself on the app; its callback
+// throws UsageError (or std::exception) for bad input, which main() turns into
+// a one-line message and exit status 2.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace spiralgen {
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+void add_table_command(CLI::App& app);
+void add_discrepancy_command(CLI::App& app);
+void add_header_command(CLI::App& app);
+void add_blur_command(CLI::App& app);
+
+}  // namespace spiralgen

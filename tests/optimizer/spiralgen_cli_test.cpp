@@ -1,0 +1,123 @@
+// The table and discrepancy subcommands, driven through the real executable.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "process.hpp"
+#include "spiral/optimizer.hpp"
+
+using spiral::test::count_lines;
+using spiral::test::run_command;
+
+namespace {
+
+const std::string kSpiralgen = SPIRALGEN_PATH;
+
+spiral::test::ProcessResult spiralgen(const std::string& arguments) {
+    std::string command_line = "'";
+    command_line.append(kSpiralgen).append("' ").append(arguments);
+    return run_command(command_line);
+}
+
+}  // namespace
+
+TEST_CASE("table output is identical across runs and thread counts", "[cli][table]") {
+    const auto serial = spiralgen("table --max-n 150 --format json --jobs 1");
+    const auto parallel = spiralgen("table --max-n 150 --format json --jobs 3");
+    const auto again = spiralgen("table --max-n 150 --format json");
+    REQUIRE(serial.status == 0);
+    CHECK(serial.err.empty());
+    CHECK(serial.out == parallel.out);
+    CHECK(serial.out == again.out);
+    CHECK(count_lines(serial.out) >= 150);
+}
+
+TEST_CASE("table json carries the search's exact values", "[cli][table]") {
+    const auto result = spiralgen("table --min-n 12 --max-n 12 --format json");
+    REQUIRE(result.status == 0);
+    const auto expected = spiral::search(12);
+    std::string ties;
+    for (int tau : expected.ties) {
+        if (!ties.empty()) ties.push_back(',');
+        ties.append(std::to_string(tau));
+    }
+    const std::string object = "{\"n\":12,\"tau\":" + std::to_string(expected.tau) + ",\"ties\":[" + ties +
+                               "],\"discrepancy\":{\"num\":" + std::to_string(expected.scaled) + ",\"den\":576,";
+    CHECK(result.out.find(object) != std::string::npos);
+}
+
+TEST_CASE("discrepancy reports the exact fraction and the worst sector", "[cli][discrepancy]") {
+    const auto d = spiral::discrepancy(11, 3);
+    const auto text = spiralgen("discrepancy --n 11 --tau 3");
+    REQUIRE(text.status == 0);
+    CHECK(text.out.find("D(11, 3) = " + std::to_string(d.scaled) + " / 484") != std::string::npos);
+    CHECK(text.out.find("worst sector") != std::string::npos);
+
+    const auto json = spiralgen("discrepancy --n 11 --tau 3 --format json");
+    REQUIRE(json.status == 0);
+    CHECK(json.out.find("\"num\":" + std::to_string(d.scaled) + ",\"den\":484") != std::string::npos);
+    CHECK(json.out.find("\"count\":" + std::to_string(d.worst.count)) != std::string::npos);
+}
+
+TEST_CASE("bad input gives one line on stderr and exit status 2", "[cli][errors]") {
+    const std::string arguments = GENERATE(as<std::string>{},
+        "discrepancy --n abc --tau 3",
+        "discrepancy --n 0 --tau 3",
+        "discrepancy --n 70000 --tau 3",
+        "discrepancy --n 11 --tau 0",
+        "discrepancy --n 11 --tau -4",
+        "discrepancy --n 11",
+        "discrepancy --n 11 --tau 3 --format xml",
+        "table --min-n 0",
+        "table --max-n 99999",
+        "table --min-n 10 --max-n 5",
+        "table --format yaml",
+        "table --jobs -2",
+        "table --max-n x",
+        "table --out /nonexistent-dir/sub/table.md",
+        "frobnicate",
+        "");
+    INFO("spiralgen " << arguments);
+    const auto result = spiralgen(arguments);
+    CHECK(result.status == 2);
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.rfind("spiralgen: error: ", 0) == 0);
+    CHECK(result.out.empty());
+}
+
+TEST_CASE("--help works on every subcommand", "[cli]") {
+    const std::string command = GENERATE(as<std::string>{}, "table", "discrepancy");
+    const auto result = spiralgen(command + " --help");
+    CHECK(result.status == 0);
+    CHECK(result.out.find("--format") != std::string::npos);
+}
+
+TEST_CASE("--out is written atomically and a failing run leaves no file", "[cli][atomic]") {
+    const auto dir = spiral::test::make_scratch_dir("spiralgen-cli");
+    const auto out = dir / "table.md";
+
+    SECTION("a good run writes exactly what stdout would show") {
+        const auto to_file = spiralgen("table --max-n 40 --out '" + out.string() + "'");
+        const auto to_stdout = spiralgen("table --max-n 40");
+        REQUIRE(to_file.status == 0);
+        CHECK(to_file.out.empty());
+        CHECK(spiral::test::read_file(out) == to_stdout.out);
+    }
+    SECTION("a failing run creates nothing") {
+        const auto result = spiralgen("table --max-n 40 --format nope --out '" + out.string() + "'");
+        CHECK(result.status == 2);
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
+    SECTION("a failing run keeps the previous file intact") {
+        REQUIRE(spiralgen("table --max-n 20 --out '" + out.string() + "'").status == 0);
+        const auto before = spiral::test::read_file(out);
+        CHECK(spiralgen("table --max-n 0 --out '" + out.string() + "'").status == 2);
+        CHECK(spiral::test::read_file(out) == before);
+    }
+    // No temporary may be left next to the output either way.
+    int entries = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++entries;
+    CHECK(entries <= 1);
+    std::filesystem::remove_all(dir);
+}

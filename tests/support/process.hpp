@@ -1,0 +1,55 @@
+// Runs a command line through the shell and captures its exit status, standard
+// output and standard error, for tests of the command-line tools.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+
+namespace spiral::test {
+
+struct ProcessResult {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+inline std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A fresh, empty directory under the system's temporary directory.
+inline std::filesystem::path make_scratch_dir(const std::string& tag) {
+    std::random_device seed;
+    const auto dir = std::filesystem::temp_directory_path() /
+                     (tag + "-" + std::to_string(seed()) + "-" + std::to_string(seed()));
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+inline ProcessResult run_command(const std::string& command_line) {
+    const auto dir = make_scratch_dir("spiral-run");
+    const auto out = dir / "stdout", err = dir / "stderr";
+    const std::string full = command_line + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+    const int raw = std::system(full.c_str());
+    ProcessResult result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    result.out = read_file(out);
+    result.err = read_file(err);
+    std::filesystem::remove_all(dir);
+    return result;
+}
+
+inline int count_lines(const std::string& text) {
+    int lines = 0;
+    for (char c : text) lines += c == '\n';
+    return lines;
+}
+
+}  // namespace spiral::test
