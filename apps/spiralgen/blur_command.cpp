@@ -1,7 +1,7 @@
 // spiralgen blur: the GLSL header holding the bilateral blur's Gaussian weights.
+#include <cmath>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 
 #include <fmt/core.h>
@@ -12,6 +12,9 @@
 namespace spiralgen {
 namespace {
 
+// gaussian_kernel's own limit; a wider blur belongs in a different algorithm.
+constexpr int kMaxBlurRadius = 1024;
+
 struct BlurArgs {
     int radius = -1;
     std::optional<double> sigma;
@@ -20,12 +23,12 @@ struct BlurArgs {
 
 void run_blur(const BlurArgs& args) {
     namespace codegen = spiral::codegen;
-    codegen::BlurKernel kernel;
-    try {
-        kernel = codegen::gaussian_kernel(args.radius, args.sigma);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(fmt::format("{} (--radius / --sigma)", e.what()));
-    }
+    if (args.radius < 0 || args.radius > kMaxBlurRadius)
+        throw UsageError(
+            fmt::format("--radius {} is outside [0, {}]", args.radius, kMaxBlurRadius));
+    if (args.sigma && !(std::isfinite(*args.sigma) && *args.sigma > 0))
+        throw UsageError(fmt::format("--sigma {} is not a finite number > 0", *args.sigma));
+    const codegen::BlurKernel kernel = codegen::gaussian_kernel(args.radius, args.sigma);
     // Recorded canonically and without --out, like every generated file.
     std::string command = fmt::format("spiralgen blur --radius {}", args.radius);
     if (args.sigma) command += fmt::format(" --sigma {}", *args.sigma);

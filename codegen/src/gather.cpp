@@ -125,19 +125,19 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
     std::string verdict;
     std::string inputs;
     if (chosen.tau == optimum.tau) {
-        inputs = fmt::format("pass \"{}\", {} taps, tau = {} (the optimum)", pass, n, chosen.tau);
+        inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (the optimum)", pass, n, chosen.tau);
         verdict = fmt::format(
             "// {}: the minimum over tau in [1, {}], reached by tau = {}.\n", optimum_text, n,
             ties);
     } else if (chosen.scaled == optimum.scaled) {
-        inputs = fmt::format("pass \"{}\", {} taps, tau = {} (set by hand; ties with the optimum)",
+        inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; ties with the optimum)",
                              pass, n, chosen.tau);
         verdict = fmt::format(
             "// tau = {} was set by hand. It is not the smallest optimal tau ({}) but its\n"
             "// discrepancy is the same: {}.\n",
             chosen.tau, optimum.tau, chosen_text);
     } else {
-        inputs = fmt::format("pass \"{}\", {} taps, tau = {} (set by hand; NOT the optimum)",
+        inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; NOT the optimum)",
                              pass, n, chosen.tau);
         verdict = fmt::format(
             "// tau = {} was set by hand and is NOT the optimum. Its discrepancy is worse by\n"
