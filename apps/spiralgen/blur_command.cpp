@@ -35,7 +35,7 @@ void run_blur(const BlurArgs& args) {
 
     const std::string text = codegen::format_blur_header(kernel, codegen::Provenance{command});
     if (args.out.empty())
-        fmt::print("{}", text);
+        codegen::write_stdout(text);
     else
         codegen::write_file_atomically(args.out, text);
 }

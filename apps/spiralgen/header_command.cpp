@@ -42,7 +42,7 @@ void run_header(const HeaderArgs& args) {
     const std::string text =
         codegen::make_gather_header(args.pass, args.taps, args.tau, codegen::Provenance{command});
     if (args.out.empty())
-        fmt::print("{}", text);
+        codegen::write_stdout(text);
     else
         codegen::write_file_atomically(args.out, text);
 }

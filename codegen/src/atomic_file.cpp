@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -83,6 +84,14 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     if (::close(fd) != 0) fail(path, errno_text(errno));
     if (::rename(temporary.name.c_str(), path.c_str()) != 0) fail(path, errno_text(errno));
     temporary.renamed = true;
+}
+
+void write_stdout(std::string_view contents) {
+    errno = 0;
+    const std::size_t written = std::fwrite(contents.data(), 1, contents.size(), stdout);
+    if (written != contents.size() || std::fflush(stdout) != 0 || std::ferror(stdout))
+        throw std::runtime_error(fmt::format("cannot write to standard output: {}",
+                                             errno != 0 ? errno_text(errno) : "write failed"));
 }
 
 }  // namespace spiral::codegen

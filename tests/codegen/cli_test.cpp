@@ -137,3 +137,19 @@ TEST_CASE("--help works on header and blur", "[codegen][cli]") {
     CHECK(result.status == 0);
     CHECK(result.out.find("--out") != std::string::npos);
 }
+
+TEST_CASE("a failed write to standard output is an error, not a silent exit 0",
+          "[codegen][cli][errors]") {
+    if (!fs::exists("/dev/full")) {
+        WARN("no /dev/full on this system; skipped");
+        return;
+    }
+    const std::string arguments = GENERATE(as<std::string>{}, "header --pass ao --taps 3", "blur --radius 2");
+    INFO("spiralgen " << arguments << " >/dev/full");
+    // The inner redirection wins over the one run_command adds around the group.
+    const auto result =
+        spiral::test::run_command("{ '" + kSpiralgen + "' " + arguments + " >/dev/full; }");
+    CHECK(result.status == 2);
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find("standard output") != std::string::npos);
+}

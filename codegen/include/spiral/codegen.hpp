@@ -146,4 +146,10 @@ std::string format_blur_header(const BlurKernel& kernel, const Provenance& prove
 // one-line message naming the path and the problem.
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
+// Writes `contents` to standard output and flushes it, throwing
+// std::runtime_error ("cannot write to standard output: <reason>") when the
+// write or the flush fails, e.g. on a full disk or a closed pipe; stdio's
+// buffering would otherwise lose the error and let the program exit 0.
+void write_stdout(std::string_view contents);
+
 }  // namespace spiral::codegen
