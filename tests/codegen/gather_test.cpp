@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -209,6 +211,32 @@ TEST_CASE("the gather header states whether tau is the optimum", "[codegen][gath
         auto bad_name = spec(5, 2, {2, 3}, 44, 2, 44);
         bad_name.pass = "9lives";
         CHECK_THROWS_AS(format_gather_header(bad_name, kProvenance), std::invalid_argument);
+    }
+}
+
+TEST_CASE("every printed offset and alpha reads back as the same float", "[codegen][gather]") {
+    // 255 taps with an awkward tau, and 1000 taps where tiny offsets print
+    // with an exponent: parse each "vec2(x, y),  // i" and "a,  // i" line.
+    for (auto [n, tau] : {std::pair{255, 97}, std::pair{1000, 501}}) {
+        auto s = spec(n, tau, {tau}, 4, tau, 4);
+        const auto text = spiral::codegen::format_gather_header(s, kProvenance);
+        const auto taps = spiral_taps(n, tau);
+        std::size_t offsets = text.find("vec2[](\n"), alphas = text.find("float[](\n");
+        REQUIRE(offsets != std::string::npos);
+        REQUIRE(alphas != std::string::npos);
+        for (int i = 0; i < n; ++i) {
+            INFO("n = " << n << ", i = " << i);
+            offsets = text.find("    vec2(", offsets) + 9;
+            char* end = nullptr;
+            const float x = std::strtof(text.c_str() + offsets, &end);
+            REQUIRE(std::strncmp(end, ", ", 2) == 0);
+            const float y = std::strtof(end + 2, &end);
+            REQUIRE(*end == ')');
+            CHECK(bits(x) == bits(taps[static_cast<std::size_t>(i)].x));
+            CHECK(bits(y) == bits(taps[static_cast<std::size_t>(i)].y));
+            alphas = text.find("\n    ", alphas) + 5;
+            CHECK(std::strtof(text.c_str() + alphas, nullptr) == taps[static_cast<std::size_t>(i)].alpha);
+        }
     }
 }
 

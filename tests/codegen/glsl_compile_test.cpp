@@ -75,6 +75,16 @@ TEST_CASE("a multi-word pass name and an overridden tau compile", "[codegen][gls
     CHECK(compiled.status == 0);
 }
 
+TEST_CASE("offsets printed with an exponent compile", "[codegen][glsl]") {
+    // 1000 taps, tau 501: tap 0 sits 2/1000 of a quarter turn past 90 degrees,
+    // so its x is about -alpha * pi/1000 = -1.57e-6, printed as "-1.57...e-06".
+    const auto header = generate("header --pass ao --taps 1000 --tau 501");
+    REQUIRE(header.find("e-06") != std::string::npos);
+    const auto compiled = compile(header, gather_use("AO"));
+    INFO(compiled.log);
+    CHECK(compiled.status == 0);
+}
+
 TEST_CASE("blur headers compile", "[codegen][glsl]") {
     const std::string arguments =
         GENERATE(as<std::string>{}, "blur --radius 0", "blur --radius 4", "blur --radius 16 --sigma 3.5");
