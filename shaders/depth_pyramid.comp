@@ -1,0 +1,38 @@
+#version 450 core
+// Camera-space depth pyramid (design.md 3, step 2). Level 0 holds the linear
+// depth of both G-buffer layers, packed into R and G so one fetch serves both
+// layers; 0 means no surface. Level m+1 copies one texel of each 2x2 block of
+// level m, the corner chosen by a rotated grid: averaging would invent depths
+// between a foreground and a background that no surface has.
+//
+// Variant PYRAMID_BASE_LEVEL writes level 0 from the G-buffer depth; the other
+// variant writes level `destination_level` from the level above it.
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = DEEPGI_IMAGE_PYRAMID_DESTINATION, rg32f) uniform writeonly image2D destination;
+#ifdef PYRAMID_BASE_LEVEL
+layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
+#else
+layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rg32f) uniform readonly image2D source;
+#endif
+
+float linear_depth_or_zero(float stored) { return stored > 0.0 ? frame.camera_ray_scale.z / stored : 0.0; }
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, imageSize(destination)))) return;
+#ifdef PYRAMID_BASE_LEVEL
+  float layer0 = texelFetch(gbuffer_depth, ivec3(texel, 0), 0).r;
+  float layer1 = texelFetch(gbuffer_depth, ivec3(texel, 1), 0).r;
+  imageStore(destination, texel, vec4(linear_depth_or_zero(layer0), linear_depth_or_zero(layer1), 0.0, 0.0));
+#else
+  // McGuire et al.'s rotated grid: the chosen corner alternates with the
+  // parity of the other axis. Odd sizes: the last row/column clamps.
+  ivec2 corner = ivec2((texel.y & 1) ^ 1, (texel.x & 1) ^ 1);
+  ivec2 from = min(2 * texel + corner, imageSize(source) - 1);
+  imageStore(destination, texel, imageLoad(source, from));
+#endif
+}

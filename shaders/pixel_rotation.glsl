@@ -1,0 +1,39 @@
+// Per-pixel rotation phi of a gather pattern (design.md 1.1), shared by the
+// passes that rotate a spiral and by the CPU reference in tests/runtime.
+//
+// Why this hash: the classic SAO rotation (3x ^ y + x*y) * 10 multiplies the
+// coordinates, so its angle pattern follows the hyperbolas x*y = const and
+// overflows 32-bit ints near 4K; fract(sin(dot(p, k))) loses its low bits
+// once the argument grows past float precision. Here every step is a 32-bit
+// unsigned multiply or xor-shift, which GLSL and C++ both define as
+// arithmetic modulo 2^32, so the result is the same for every coordinate the
+// renderer accepts (up to 16384) and the same on the CPU.
+
+// The 32-bit finaliser of MurmurHash3: a bijection that flips each output bit
+// with probability close to 1/2 for any flipped input bit.
+uint avalanche32(uint h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bu;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35u;
+  h ^= h >> 16;
+  return h;
+}
+
+// Distinct x in one row always give distinct hashes (xor with a fixed value,
+// then a bijection).
+uint pixel_rotation_hash(uvec2 pixel) { return avalanche32(pixel.x ^ avalanche32(pixel.y + 0x9e3779b9u)); }
+
+// phi in [0, 2*pi), from the top 24 bits so the conversion to float is exact.
+float pixel_rotation_angle(uvec2 pixel) {
+  return float(pixel_rotation_hash(pixel) >> 8u) * (1.0 / 16777216.0) * 6.2831855;
+}
+
+// One 2x2 matrix per pixel; each tap's offset is rotated by it instead of
+// evaluating cos and sin per tap.
+mat2 pixel_rotation(uvec2 pixel) {
+  float phi = pixel_rotation_angle(pixel);
+  float c = cos(phi);
+  float s = sin(phi);
+  return mat2(c, s, -s, c);
+}

@@ -1,0 +1,91 @@
+#version 450 core
+// Deep scalable ambient obscurance (design.md 3, step 4): ambient visibility
+// of layer 0 from the spiral taps of the generated ao_taps.glsl, each tap
+// testing both depth layers and keeping the larger occlusion.
+//
+// Define AO_LAYERS 1 to read layer 0 only (for comparison); the default is 2.
+// The blur that follows keys on the depth pyramid and the G-buffer normal, so
+// the output is visibility alone.
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+#include "pixel_rotation.glsl"
+#include "ao_taps.glsl"
+
+#ifndef AO_LAYERS
+#define AO_LAYERS 2
+#endif
+
+layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
+layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+
+// x: world-space radius r (m), y: bias beta (m), z: intensity (exponent), w: q (px)
+layout(location = DEEPGI_UNIFORM_SAO_PARAMETERS) uniform vec4 sao_parameters;
+layout(location = DEEPGI_UNIFORM_SAO_MAX_MIP) uniform int max_mip;
+
+layout(location = 0) out float out_visibility;
+
+// Keeps a tap at the centre from dividing by zero; m^2, far below any v.v a
+// tap past the bias can have.
+const float obscurance_epsilon = 1.0e-4;
+const float pi = 3.14159265;
+
+// AO(X, Y) of design.md 3, step 4. Negative beyond the radius: the caller
+// clamps once against zero after taking the larger of both layers.
+float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
+  float vv = dot(v, v);
+  float vn = dot(v, normal);
+  return (1.0 - vv / radius_squared) * max((vn - bias) / sqrt(vv + obscurance_epsilon), 0.0);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float depth = texelFetch(depth_pyramid, pixel, 0).r;
+  if (depth <= 0.0) {  // sky: nothing to occlude
+    out_visibility = 1.0;
+    return;
+  }
+  float radius = sao_parameters.x;
+  float bias = sao_parameters.y;
+  float intensity = sao_parameters.z;
+  float q = sao_parameters.w;
+  vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
+
+  // Pixels per metre at this depth: P11 * height / 2 / depth, P11 = 1 / ray_scale.y.
+  float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
+  float radius_squared = radius * radius;
+  mat2 rotation = pixel_rotation(uvec2(pixel));
+  ivec2 size = ivec2(frame.internal_size.xy);
+
+  float sum = 0.0;
+  for (int i = 0; i < AO_NUM_TAPS; ++i) {
+    vec2 offset = (rotation * AO_TAP_OFFSETS[i]) * radius_pixels;
+    ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
+    // Off the guard-banded buffer there is no depth to test: no occlusion.
+    if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) continue;
+    // m_i = clamp(floor(log2(h_i / q)), 0, max_mip), in integers: floor(log2(x))
+    // of x >= 1 is the highest set bit of floor(x), exact where log2() may round.
+    float steps = min(AO_TAP_ALPHAS[i] * radius_pixels / q, 65536.0);
+    int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), max_mip);
+    // Level sizes follow GL's rule max(1, size >> level). Computed rather than
+    // asked of textureSize(): llvmpipe (Mesa 22, LLVM 15) answers textureSize
+    // with a lod that varies across the SIMD lanes wrongly, and taps vanish.
+    ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
+    vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
+    vec2 tap_centre = vec2(tap) + 0.5;
+    float occlusion = 0.0;
+    if (tap_depths.r > 0.0) {
+      vec3 v = camera_position_at(tap_centre, tap_depths.r, frame.internal_size, frame.camera_ray_scale) - position;
+      occlusion = max(occlusion, obscurance(v, normal, radius_squared, bias));
+    }
+#if AO_LAYERS == 2
+    if (tap_depths.g > 0.0) {
+      vec3 v = camera_position_at(tap_centre, tap_depths.g, frame.internal_size, frame.camera_ray_scale) - position;
+      occlusion = max(occlusion, obscurance(v, normal, radius_squared, bias));
+    }
+#endif
+    sum += occlusion;
+  }
+  float visibility = max(0.0, 1.0 - sqrt(pi / float(AO_NUM_TAPS) * sum));
+  out_visibility = pow(visibility, intensity);
+}

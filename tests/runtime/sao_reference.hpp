@@ -1,0 +1,38 @@
+#pragma once
+// CPU evaluation of the deep SAO pass (design.md 3, step 4) and of the
+// rotated-grid depth pyramid, written from the formulas rather than from the
+// shaders, as the oracle the GPU read-backs are compared with.
+#include "deepgi/image_io.hpp"
+#include "deepgi/renderer.hpp"
+
+#include <spiral/codegen.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace deepgi::test {
+
+// The per-pixel rotation of pixel_rotation.glsl, in 32-bit unsigned arithmetic.
+std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y);
+float pixel_rotation_angle(std::uint32_t x, std::uint32_t y);
+
+// What the pass reads, as read back from the GPU.
+struct SaoInputs {
+  std::vector<FloatImage> pyramid;  // level m: channel 0 layer-0 depth, 1 layer-1 depth; 0 = no surface
+  FloatImage normals;               // layer-0 camera-space normals, 3 channels
+  glm::vec2 ray_scale{1.0f};        // (1/P00, 1/P11) of the guard-banded projection
+};
+
+// Ambient visibility per pixel (1 channel, the pyramid's level-0 size).
+FloatImage reference_ambient_visibility(const SaoInputs& inputs, const std::vector<spiral::codegen::Tap>& taps,
+                                        const AoSettings& settings);
+
+// Level m + 1 of the pyramid from level m by the rotated-grid rule.
+FloatImage reference_pyramid_level(const FloatImage& finer);
+
+// Camera ray scale (1/P00, 1/P11) the renderer uses for these settings.
+glm::vec2 camera_ray_scale(const Camera& camera, const RenderSettings& settings);
+
+}  // namespace deepgi::test
