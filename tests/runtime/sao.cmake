@@ -27,7 +27,7 @@ target_compile_definitions(deepgi_sao_tests PRIVATE
 # One ctest entry per Catch tag, so ctest -j spreads them over the cores.
 # (catch_discover_tests cannot carry two labels: Catch2 v2 splices the
 # properties unquoted.)
-foreach(tag reference pyramid blur rotation robustness)
+foreach(tag reference pyramid blur rotation robustness compose)
   add_test(NAME deepgi_sao_${tag} COMMAND deepgi_sao_tests "[${tag}]")
   set_tests_properties(deepgi_sao_${tag} PROPERTIES LABELS "runtime;sao" TIMEOUT 300)
 endforeach()

@@ -189,3 +189,73 @@ TEST_CASE("no NaN or Inf at grazing angles, near the near plane, on sky and at t
 
 }  // namespace
 }  // namespace deepgi::test
+
+namespace deepgi::test {
+namespace {
+
+float srgb_encode(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  return c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+TEST_CASE("compose multiplies the ambient term by the blurred visibility", "[compose]") {
+  HeadlessContext context;
+  const Scene scene = make_builtin_scene("cornell");
+  const RenderSettings settings = small_settings(160, 90);
+  Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+  renderer.render(scene.default_camera);
+  const FloatImage composed = renderer.read_pass_output("compose-radiance");
+  const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
+  const FloatImage emissive = renderer.read_pass_output("gbuffer-emissive-layer0");
+  const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
+  const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+  const FloatImage visibility = renderer.read_pass_output("ao-blurred");
+  int mismatches = 0;
+  int visibility_matters = 0;
+  for (int y = 0; y < composed.height; ++y) {
+    for (int x = 0; x < composed.width; ++x) {
+      if (depth.at(x, y) <= 0.0f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const float ambient = scene.ambient[c] * albedo.at(x, y, c);
+        const float expected = direct.at(x, y, c) + emissive.at(x, y, c) + ambient * visibility.at(x, y);
+        // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
+        mismatches += std::abs(composed.at(x, y, c) - expected) > 0.035f * expected + 1e-5f;
+        visibility_matters += ambient * (1.0f - visibility.at(x, y)) > 0.1f * expected;
+      }
+    }
+  }
+  CHECK(mismatches == 0);
+  CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
+}
+
+TEST_CASE("the ao-raw and ao-blurred debug views show the visibility", "[compose]") {
+  HeadlessContext context;
+  const Scene scene = make_builtin_scene("cornell");
+  for (auto [view, source] : {std::pair{DebugView::ao_raw, "ao-raw"}, std::pair{DebugView::ao_blurred, "ao-blurred"}}) {
+    RenderSettings settings = small_settings(160, 90);
+    settings.view = view;
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    renderer.render(scene.default_camera);
+    const std::vector<std::uint8_t> shown = renderer.read_output_rgba8();
+    const FloatImage visibility = renderer.read_pass_output(source);
+    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+    const int guard = renderer.layout().guard;
+    int mismatches = 0;
+    int grey_levels = 0;
+    for (int y = 0; y < settings.height; ++y) {
+      for (int x = 0; x < settings.width; ++x) {
+        const bool surface = depth.at(x + guard, y + guard) > 0.0f;
+        const float expected = surface ? srgb_encode(visibility.at(x + guard, y + guard)) : 0.0f;
+        const float actual = float(shown[(std::size_t(y) * std::size_t(settings.width) + std::size_t(x)) * 4]) / 255.0f;
+        mismatches += std::abs(actual - expected) > 1.0f / 255.0f;
+        grey_levels += surface && expected < 0.9f;
+      }
+    }
+    INFO(source);
+    CHECK(mismatches == 0);
+    CHECK(grey_levels > 100);
+  }
+}
+
+}  // namespace
+}  // namespace deepgi::test
