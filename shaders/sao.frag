@@ -59,7 +59,9 @@ void main() {
 
   float sum = 0.0;
   for (int i = 0; i < AO_NUM_TAPS; ++i) {
-    vec2 offset = (rotation * AO_TAP_OFFSETS[i]) * radius_pixels;
+    // The clamp keeps the int conversion defined for absurd radii; a tap that
+    // far out is off the buffer either way.
+    vec2 offset = clamp((rotation * AO_TAP_OFFSETS[i]) * radius_pixels, vec2(-65536.0), vec2(65536.0));
     ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
     // Off the guard-banded buffer there is no depth to test: no occlusion.
     if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) continue;

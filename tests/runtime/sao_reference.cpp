@@ -73,8 +73,8 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs, const std::vect
       const float s = std::sin(phi);
       float sum = 0.0f;
       for (const auto& tap : taps) {
-        const float offset_x = (c * tap.x - s * tap.y) * radius_pixels;
-        const float offset_y = (s * tap.x + c * tap.y) * radius_pixels;
+        const float offset_x = std::clamp((c * tap.x - s * tap.y) * radius_pixels, -65536.0f, 65536.0f);
+        const float offset_y = std::clamp((s * tap.x + c * tap.y) * radius_pixels, -65536.0f, 65536.0f);
         const int tap_x = int(std::floor(float(x) + 0.5f + offset_x));
         const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
         if (tap_x < 0 || tap_y < 0 || tap_x >= width || tap_y >= height) continue;

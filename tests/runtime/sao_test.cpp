@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <tuple>
 
 namespace deepgi::test {
 namespace {
@@ -173,6 +174,23 @@ TEST_CASE("no NaN or Inf at grazing angles, near the near plane, on sky and at t
       for (const FloatImage& level : frame.inputs.pyramid) CHECK(all_finite(level));
     }
   }
+  // Extreme parameters on the near-plane scene.
+  for (auto [radius, bias, intensity, q] : {std::tuple{1e6f, 0.0f, 1.0f, 1.0f}, std::tuple{1e-4f, 0.0f, 1.0f, 1.0f},
+                                            std::tuple{0.5f, 100.0f, 1.0f, 8.0f}, std::tuple{3.0f, 0.0f, 50.0f, 1e6f}}) {
+    RenderSettings settings = small_settings(161, 91);
+    settings.ao.radius = radius;
+    settings.ao.bias = bias;
+    settings.ao.intensity = intensity;
+    settings.ao.q = q;
+    const FrameReadBack frame = render_and_read(occluded_floor(true), settings, loader);
+    INFO("radius " << radius << ", bias " << bias << ", intensity " << intensity << ", q " << q);
+    for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
+      CHECK(all_finite(*image));
+      CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
+      CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
+    }
+  }
+
   // The sky case really has sky, where visibility must be exactly 1.
   RenderSettings settings = small_settings(160, 90);
   const FrameReadBack frame = render_and_read(sky, settings, loader);
