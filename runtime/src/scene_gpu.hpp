@@ -1,0 +1,22 @@
+#pragma once
+// The scene as the passes draw it: one vertex and index buffer, one batch per material.
+#include "deepgi/gl_objects.hpp"
+#include "deepgi/scene.hpp"
+
+namespace deepgi {
+
+struct SceneGpu {
+  gl::VertexArray vertex_array;
+  gl::Buffer vertices;
+  gl::Buffer indices;
+  std::vector<DrawBatch> batches;
+  std::vector<Material> materials;
+  std::vector<gl::Texture> textures;
+};
+
+SceneGpu upload_scene(const Scene& scene);
+
+// Draws every batch; `per_material` sets material uniforms first when non-null.
+void draw_scene(const SceneGpu& scene, GLuint program_for_materials);
+
+}  // namespace deepgi

@@ -1,0 +1,48 @@
+#version 450 core
+// Shows one attachment of one layer instead of the final image (guard band
+// cropped like the tonemap). Nothing hit shows as black.
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+#include "tonemap_curve.glsl"
+
+layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
+layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
+layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
+layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
+layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
+layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D ao_raw;
+layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ao_blurred;
+
+layout(location = 0) out vec4 out_colour;
+
+vec3 view_colour(ivec2 pixel, int view) {
+  int layer = (view == DEEPGI_VIEW_NORMAL_LAYER1 || view == DEEPGI_VIEW_ALBEDO_LAYER1 ||
+               view == DEEPGI_VIEW_DEPTH_LAYER1 || view == DEEPGI_VIEW_DIRECT_LAYER1) ? 1 : 0;
+  ivec3 texel = ivec3(pixel, layer);
+  float stored_depth = texelFetch(gbuffer_depth, texel, 0).r;
+  if (stored_depth <= 0.0) return vec3(0.0);
+  // Visibility is shown as it is (1 = unoccluded white), not tonemapped.
+  if (view == DEEPGI_VIEW_AO_RAW) return vec3(texelFetch(ao_raw, pixel, 0).r);
+  if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(texelFetch(ao_blurred, pixel, 0).r);
+  if (view == DEEPGI_VIEW_NORMAL_LAYER0 || view == DEEPGI_VIEW_NORMAL_LAYER1)
+    return decode_normal(texelFetch(gbuffer_normal, texel, 0).xy) * 0.5 + 0.5;
+  if (view == DEEPGI_VIEW_ALBEDO_LAYER0 || view == DEEPGI_VIEW_ALBEDO_LAYER1)
+    return srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
+  if (view == DEEPGI_VIEW_EMISSIVE)
+    return filmic_tonemap(texelFetch(gbuffer_emissive, texel, 0).rgb * frame.parameters.y);
+  if (view == DEEPGI_VIEW_MOTION) {
+    vec2 motion = texelFetch(gbuffer_motion, texel, 0).xy;
+    return vec3(clamp(0.5 + motion / 32.0, 0.0, 1.0), 0.5);
+  }
+  if (view == DEEPGI_VIEW_DEPTH_LAYER0 || view == DEEPGI_VIEW_DEPTH_LAYER1) {
+    float depth = frame.camera_ray_scale.z / stored_depth;
+    return vec3(clamp(1.0 - depth / frame.parameters.w, 0.0, 1.0));
+  }
+  return filmic_tonemap(texelFetch(direct_light, texel, 0).rgb * frame.parameters.y);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy) + ivec2(frame.layout_info.x);
+  out_colour = vec4(srgb_encode(view_colour(pixel, frame.options.y)), 1.0);
+}

@@ -1,0 +1,75 @@
+#version 450 core
+// Variants (defines from gbuffer_pass.cpp):
+//   none               peel, layer 0: nearest surface, no test
+//   PEEL_SECOND_LAYER  peel, layer 1 against this frame's layer-0 depth
+//   SINGLE_PASS        previous / reproject: gl_Layer says which layer
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+
+in GBufferVertex {
+  vec3 camera_normal;
+  vec2 uv;
+  float camera_depth;
+  float previous_camera_depth;
+  vec4 current_clip;
+  vec4 previous_clip;
+} fragment_in;
+
+layout(location = DEEPGI_GBUFFER_OUTPUT_NORMAL) out vec2 out_normal;
+layout(location = DEEPGI_GBUFFER_OUTPUT_ALBEDO) out vec4 out_albedo;
+layout(location = DEEPGI_GBUFFER_OUTPUT_EMISSIVE) out vec3 out_emissive;
+layout(location = DEEPGI_GBUFFER_OUTPUT_MOTION) out vec2 out_motion;
+
+// Layer-0 depth (stored near/z): this frame's for peel, the previous frame's otherwise.
+layout(binding = DEEPGI_UNIT_REFERENCE_DEPTH) uniform sampler2D reference_depth;
+layout(binding = DEEPGI_UNIT_BASE_COLOUR) uniform sampler2D base_colour_texture;
+
+layout(location = DEEPGI_UNIFORM_BASE_COLOUR_FACTOR) uniform vec4 base_colour_factor;
+layout(location = DEEPGI_UNIFORM_EMISSIVE_FACTOR) uniform vec3 emissive_factor;
+layout(location = DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE) uniform int has_base_colour_texture;
+
+float reference_linear_depth(ivec2 pixel) {
+  return linear_depth_from_stored(texelFetch(reference_depth, pixel, 0).r, frame.camera_ray_scale.z);
+}
+
+// Layer 1 keeps only fragments at least min-separation behind layer 0, compared
+// in linear camera depth (the hyperbolic encoding would make dz depth dependent).
+bool is_separated_from_layer0() {
+  float min_separation = frame.parameters.x;
+  if (frame.layout_info.w == DEEPGI_GENERATOR_REPROJECT) {
+    // Where was this point last frame, and how far was layer 0 there?
+    if (fragment_in.previous_clip.w <= 0.0) return false;
+    vec2 previous_ndc = fragment_in.previous_clip.xy / fragment_in.previous_clip.w;
+    ivec2 pixel = ivec2(floor((previous_ndc * 0.5 + 0.5) * frame.internal_size.xy));
+    ivec2 size = ivec2(frame.internal_size.xy);
+    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return false;
+    return fragment_in.previous_camera_depth >= reference_linear_depth(pixel) + min_separation;
+  }
+  return fragment_in.camera_depth >= reference_linear_depth(ivec2(gl_FragCoord.xy)) + min_separation;
+}
+
+void main() {
+#if defined(PEEL_SECOND_LAYER)
+  bool second_layer = true;
+#elif defined(SINGLE_PASS)
+  bool second_layer = gl_Layer == 1;
+#else
+  bool second_layer = false;
+#endif
+  if (second_layer && !is_separated_from_layer0()) discard;
+
+  vec3 albedo = base_colour_factor.rgb;
+  if (has_base_colour_texture != 0) albedo *= texture(base_colour_texture, fragment_in.uv).rgb;
+  out_normal = encode_normal(normalize(fragment_in.camera_normal));
+  out_albedo = vec4(srgb_encode(albedo), 1.0);
+
+  // Emissive and motion are read from layer 0 only.
+  out_emissive = second_layer ? vec3(0.0) : emissive_factor;
+  vec2 motion = vec2(0.0);
+  if (!second_layer && fragment_in.previous_clip.w > 0.0) {
+    vec2 current_ndc = fragment_in.current_clip.xy / fragment_in.current_clip.w;
+    vec2 previous_ndc = fragment_in.previous_clip.xy / fragment_in.previous_clip.w;
+    motion = (current_ndc - previous_ndc) * 0.5 * frame.internal_size.xy;
+  }
+  out_motion = motion;
+}

@@ -1,0 +1,46 @@
+// The key light as seen from a camera-space point: shared by the direct light
+// pass now and by later passes that relight surfaces.
+const float PI = 3.14159265358979;
+
+layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
+
+// 3x3 PCF with hardware 2x2 comparison filtering: soft enough to hide texels,
+// cheap enough for llvmpipe.
+float shadow_visibility(vec3 camera_position, vec3 camera_normal) {
+  vec3 offset_position = camera_position + camera_normal * frame.parameters.z;
+  vec4 clip = frame.camera_to_light_clip * vec4(offset_position, 1.0);
+  if (clip.w <= 0.0) return 0.0;
+  vec3 ndc = clip.xyz / clip.w;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
+  float lit = 0.0;
+  for (int y = -1; y <= 1; ++y) {
+    for (int x = -1; x <= 1; ++x) {
+      lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, ndc.z));
+    }
+  }
+  return lit / 9.0;
+}
+
+// Irradiance arriving at a surface facing the light, before the cosine and shadow.
+vec3 light_irradiance(vec3 camera_position, out vec3 to_light) {
+  if (frame.options.x == DEEPGI_LIGHT_DIRECTIONAL) {
+    to_light = frame.light_vector.xyz;
+    return frame.light_radiance.rgb;
+  }
+  vec3 offset = frame.light_vector.xyz - camera_position;
+  float distance_squared = max(dot(offset, offset), 1e-4);
+  to_light = offset * inversesqrt(distance_squared);
+  float cos_angle = dot(-to_light, frame.spot_axis.xyz);
+  float cone = smoothstep(frame.spot_axis.w, frame.light_radiance.w, cos_angle);
+  return frame.light_radiance.rgb * cone / distance_squared;
+}
+
+vec3 lambertian_direct(vec3 camera_position, vec3 camera_normal, vec3 albedo) {
+  vec3 to_light;
+  vec3 irradiance = light_irradiance(camera_position, to_light);
+  float cosine = max(dot(camera_normal, to_light), 0.0);
+  if (cosine <= 0.0) return vec3(0.0);
+  return albedo / PI * irradiance * cosine * shadow_visibility(camera_position, camera_normal);
+}

@@ -1,0 +1,96 @@
+// Shared by the C++ host code (runtime/src/shader_shared.hpp) and the GLSL
+// passes, so binding points, enums and the per-frame uniform block have one
+// definition. Written in the common subset of both languages: #define and a
+// struct whose members are all 16-byte multiples, so std140 equals the C++
+// layout. No #include here: the C++ side provides mat4/vec4/ivec4 first.
+#ifndef DEEPGI_SHARED_CONSTANTS_H
+#define DEEPGI_SHARED_CONSTANTS_H
+
+#define DEEPGI_LAYER_COUNT 2
+
+#define DEEPGI_GENERATOR_PEEL 0
+#define DEEPGI_GENERATOR_PREVIOUS 1
+#define DEEPGI_GENERATOR_REPROJECT 2
+
+#define DEEPGI_LIGHT_DIRECTIONAL 0
+#define DEEPGI_LIGHT_SPOT 1
+
+#define DEEPGI_VIEW_FINAL 0
+#define DEEPGI_VIEW_NORMAL_LAYER0 1
+#define DEEPGI_VIEW_NORMAL_LAYER1 2
+#define DEEPGI_VIEW_ALBEDO_LAYER0 3
+#define DEEPGI_VIEW_ALBEDO_LAYER1 4
+#define DEEPGI_VIEW_EMISSIVE 5
+#define DEEPGI_VIEW_MOTION 6
+#define DEEPGI_VIEW_DEPTH_LAYER0 7
+#define DEEPGI_VIEW_DEPTH_LAYER1 8
+#define DEEPGI_VIEW_DIRECT_LAYER0 9
+#define DEEPGI_VIEW_DIRECT_LAYER1 10
+
+// Uniform block binding points.
+#define DEEPGI_UBO_FRAME 0
+
+// Texture units.
+#define DEEPGI_UNIT_GBUFFER_NORMAL 0
+#define DEEPGI_UNIT_GBUFFER_ALBEDO 1
+#define DEEPGI_UNIT_GBUFFER_EMISSIVE 2
+#define DEEPGI_UNIT_GBUFFER_MOTION 3
+#define DEEPGI_UNIT_GBUFFER_DEPTH 4
+#define DEEPGI_UNIT_REFERENCE_DEPTH 5
+#define DEEPGI_UNIT_SHADOW_MAP 6
+#define DEEPGI_UNIT_DIRECT_LIGHT 7
+#define DEEPGI_UNIT_COMPOSE 8
+#define DEEPGI_UNIT_BASE_COLOUR 9
+
+// Vertex attribute locations.
+#define DEEPGI_ATTRIBUTE_POSITION 0
+#define DEEPGI_ATTRIBUTE_NORMAL 1
+#define DEEPGI_ATTRIBUTE_UV 2
+
+// G-buffer fragment outputs (colour attachment index).
+#define DEEPGI_GBUFFER_OUTPUT_NORMAL 0
+#define DEEPGI_GBUFFER_OUTPUT_ALBEDO 1
+#define DEEPGI_GBUFFER_OUTPUT_EMISSIVE 2
+#define DEEPGI_GBUFFER_OUTPUT_MOTION 3
+
+// Explicit uniform locations of per-draw values.
+#define DEEPGI_UNIFORM_BASE_COLOUR_FACTOR 0
+#define DEEPGI_UNIFORM_EMISSIVE_FACTOR 1
+#define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
+#define DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION 3
+#define DEEPGI_UNIFORM_LAYER 4
+
+// ---- Deep SAO, depth pyramid and bilateral blur (issue 5) ----
+#define DEEPGI_VIEW_AO_RAW 11
+#define DEEPGI_VIEW_AO_BLURRED 12
+#define DEEPGI_UNIT_DEPTH_PYRAMID 10   // RG32F with MIPs: linear depth of layer 0 (R) and 1 (G); 0 = no surface
+#define DEEPGI_UNIT_AO 11              // ambient visibility (R), raw or blurred
+#define DEEPGI_UNIT_BLUR_SOURCE 12     // whatever the bilateral blur is smoothing
+#define DEEPGI_UNIT_AO_RAW 13          // debug view only
+#define DEEPGI_IMAGE_PYRAMID_SOURCE 0  // image units of the pyramid's compute shader
+#define DEEPGI_IMAGE_PYRAMID_DESTINATION 1
+#define DEEPGI_UNIFORM_PYRAMID_LEVEL 20      // int: the MIP level being written
+#define DEEPGI_UNIFORM_SAO_PARAMETERS 21     // vec4: world radius (m), bias (m), intensity, q (px)
+#define DEEPGI_UNIFORM_SAO_MAX_MIP 22        // int: deepest pyramid level a tap may read
+#define DEEPGI_UNIFORM_BLUR_DIRECTION 23     // ivec2: (1, 0) horizontal, (0, 1) vertical
+#define DEEPGI_UNIFORM_BLUR_PARAMETERS 24    // vec4: depth tolerance, normal power, plane tolerance, unused
+
+struct FrameConstants {
+  mat4 view;
+  mat4 projection;  // guard-banded, reversed Z, infinite far plane
+  mat4 previous_view;
+  mat4 previous_view_projection;
+  mat4 camera_to_light_clip;  // camera space -> shadow map clip space
+  vec4 camera_ray_scale;      // (1/P00, 1/P11, near plane, 0): position from linear depth
+  vec4 light_vector;          // camera space; directional: unit vector to the light; spot: position
+  vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone
+  vec4 light_radiance;        // rgb: colour * intensity; w: cos of the inner cone
+  vec4 ambient;               // rgb: constant fill radiance factor (times albedo)
+  vec4 background;            // rgb: radiance where nothing is hit
+  vec4 internal_size;         // (w, h, 1/w, 1/h) of the guard-banded buffers
+  vec4 parameters;            // x: min separation (m), y: exposure, z: shadow normal offset (m), w: depth view range (m)
+  ivec4 layout_info;          // x: guard band (px), y: viewport width, z: viewport height, w: generator
+  ivec4 options;              // x: light kind, y: debug view
+};
+
+#endif

@@ -1,0 +1,15 @@
+#version 450 core
+// Filmic tonemap (Hable's curve), sRGB encode, guard band cropped: the output
+// is viewport sized and reads the composed radiance offset by the guard band.
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+#include "tonemap_curve.glsl"
+
+layout(binding = DEEPGI_UNIT_COMPOSE) uniform sampler2D composed_radiance;
+layout(location = 0) out vec4 out_colour;
+
+void main() {
+  ivec2 source = ivec2(gl_FragCoord.xy) + ivec2(frame.layout_info.x);
+  vec3 radiance = texelFetch(composed_radiance, source, 0).rgb;
+  out_colour = vec4(srgb_encode(filmic_tonemap(radiance * frame.parameters.y)), 1.0);
+}
