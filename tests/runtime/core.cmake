@@ -1,0 +1,20 @@
+# ---- deepgi core (issue 4): G-buffer, outputs, shader loader, CLI ----
+add_executable(deepgi_runtime_tests
+  ${CMAKE_CURRENT_LIST_DIR}/test_gbuffer.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_outputs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_shader_loader.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_cli.cpp)
+target_link_libraries(deepgi_runtime_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt)
+target_compile_definitions(deepgi_runtime_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
+add_dependencies(deepgi_runtime_tests deepgi)
+catch_discover_tests(deepgi_runtime_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# The hidden GLFW window under Xvfb must render the same image as EGL.
+find_program(DEEPGI_XVFB_RUN xvfb-run)
+if(DEEPGI_XVFB_RUN)
+  add_test(NAME deepgi_hidden_window_matches_egl
+    COMMAND ${CMAKE_COMMAND} -DDEEPGI=$<TARGET_FILE:deepgi> -DXVFB_RUN=${DEEPGI_XVFB_RUN}
+            -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/hidden_window
+            -P ${CMAKE_CURRENT_LIST_DIR}/hidden_window_matches_egl.cmake)
+  set_tests_properties(deepgi_hidden_window_matches_egl PROPERTIES LABELS runtime TIMEOUT 120)
+endif()

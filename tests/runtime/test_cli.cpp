@@ -1,0 +1,126 @@
+// The deepgi executable: bad input gives one line on stderr and exit status 2
+// and writes nothing; the same command twice gives the same bytes; --dump
+// writes finite PFM images.
+#include "deepgi/image_io.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int status = -1;
+  std::string stderr_text;
+};
+
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / ("deepgi_cli_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+RunResult run_deepgi(const std::string& arguments) {
+  const fs::path errors = scratch() / "stderr.txt";
+  const std::string command = fmt::format("'{}' {} 2> '{}' > /dev/null", DEEPGI_EXECUTABLE, arguments, errors.string());
+  const int raw = std::system(command.c_str());
+  RunResult result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream stream(errors);
+  result.stderr_text.assign(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
+  return result;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+void require_one_line_error(const std::string& arguments, const std::string& expected_text) {
+  const fs::path output = scratch() / "must_not_exist.png";
+  fs::remove(output);
+  const RunResult result = run_deepgi(arguments + " --output '" + output.string() + "'");
+  INFO(arguments << " -> " << result.stderr_text);
+  REQUIRE(result.status == 2);
+  REQUIRE(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n') == 1);
+  REQUIRE(result.stderr_text.find(expected_text) != std::string::npos);
+  REQUIRE_FALSE(fs::exists(output));
+}
+
+}  // namespace
+
+TEST_CASE("bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
+  require_one_line_error("--headless --size 0x90", "--size");
+  require_one_line_error("--headless --size big", "--size");
+  require_one_line_error("--headless --size 160x90 --generator delay", "--generator");
+  require_one_line_error("--headless --size 160x90 --min-separation -1", "--min-separation");
+  require_one_line_error("--headless --size 160x90 --frames 0", "--frames");
+  require_one_line_error("--headless --size 160x90 --no-such-option", "no-such-option");
+  require_one_line_error("--headless --size 160x90 --frames two", "--frames");
+  require_one_line_error("--headless --size 160x90 --view sideways", "--view");
+}
+
+TEST_CASE("bad scenes give a one-line error and exit status 2", "[runtime][cli]") {
+  const fs::path dir = scratch();
+  std::ofstream(dir / "broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ";
+  std::ofstream(dir / "empty.gltf") << R"({ "asset": { "version": "2.0" } })";
+  std::ofstream(dir / "lines.gltf")
+      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":24,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAA"}],)"
+      << R"("bufferViews":[{"buffer":0,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3","min":[0,0,0],"max":[1,0,0]}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  std::ofstream(dir / "scene.obj") << "v 0 0 0\n";
+  require_one_line_error("--headless --size 160x90 --scene no_such_scene", "unknown scene");
+  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "missing.gltf").string()), "does not exist");
+  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "broken.gltf").string()), "broken.gltf");
+  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "empty.gltf").string()), "no triangles");
+  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "lines.gltf").string()), "not supported");
+  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "scene.obj").string()), "not glTF");
+}
+
+TEST_CASE("an output directory that does not exist is an input error", "[runtime][cli]") {
+  const RunResult result = run_deepgi("--headless --size 16x9 --output /nonexistent-dir/out.png");
+  REQUIRE(result.status == 2);
+  REQUIRE(result.stderr_text.find("does not exist") != std::string::npos);
+}
+
+TEST_CASE("the same command twice writes identical images", "[runtime][cli]") {
+  const fs::path dir = scratch();
+  for (const char* generator : {"peel", "reproject"}) {
+    const std::string common = fmt::format("--headless --scene atrium --size 160x90 --frames 3 --camera-path --generator {}", generator);
+    REQUIRE(run_deepgi(common + " --output '" + (dir / "first.png").string() + "'").status == 0);
+    REQUIRE(run_deepgi(common + " --output '" + (dir / "second.png").string() + "'").status == 0);
+    const std::string first = read_bytes(dir / "first.png");
+    REQUIRE(first.size() > 100);
+    REQUIRE(first == read_bytes(dir / "second.png"));
+  }
+}
+
+TEST_CASE("--dump writes every pass output as finite PFM images", "[runtime][cli]") {
+  const fs::path dir = scratch() / "dump";
+  fs::remove_all(dir);
+  const RunResult result = run_deepgi(fmt::format("--headless --scene cornell --size 161x91 --frames 2 --generator previous "
+                                                  "--output '{}' --dump '{}'", (scratch() / "dump.png").string(), dir.string()));
+  REQUIRE(result.status == 0);
+  int files = 0;
+  for (const char* name : {"gbuffer-depth-layer0", "gbuffer-depth-layer1", "gbuffer-normal-layer0", "gbuffer-normal-layer1",
+                           "gbuffer-albedo-layer0", "gbuffer-albedo-layer1", "gbuffer-emissive-layer0", "gbuffer-motion-layer0",
+                           "shadow-depth", "direct_light-radiance-layer0", "direct_light-radiance-layer1", "compose-radiance",
+                           "tonemap-colour"}) {
+    INFO(name);
+    const deepgi::FloatImage image = deepgi::read_pfm(dir / (std::string(name) + ".pfm"));
+    REQUIRE(deepgi::testing::all_finite(image));
+    ++files;
+  }
+  const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
+  REQUIRE(colour.width == 161);
+  REQUIRE(colour.height == 91);
+  REQUIRE(files == 13);
+}
