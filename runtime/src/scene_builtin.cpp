@@ -181,7 +181,7 @@ Scene make_warehouse() {
         builder.add_box({row_x + dx, 2.5f, z}, {0.05f, 2.5f, 0.05f}, steel);
       }
       for (float level : shelf_levels) {
-        builder.add_box({row_x, level, z + bay * 0.5f}, {0.6f, 0.03f, bay * 0.5f}, plank);
+        builder.add_box({row_x, level, z + bay * 0.5f}, {0.57f, 0.03f, bay * 0.5f}, plank);  // inside the uprights: no coplanar faces
         // Up to three cartons per bay and level, of varied size.
         float cursor = z + 0.15f;
         while (cursor < z + bay - 0.5f) {

@@ -103,7 +103,7 @@ TEST_CASE("the same command twice writes identical images", "[runtime][cli]") {
   }
 }
 
-TEST_CASE("--dump writes every pass output as finite PFM images", "[runtime][cli]") {
+TEST_CASE("the dump option writes every pass output as finite PFM images", "[runtime][cli]") {
   const fs::path dir = scratch() / "dump";
   fs::remove_all(dir);
   const RunResult result = run_deepgi(fmt::format("--headless --scene cornell --size 161x91 --frames 2 --generator previous "

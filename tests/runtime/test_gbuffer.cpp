@@ -92,7 +92,7 @@ TEST_CASE("peel matches a CPU ray cast: atrium", "[runtime][gbuffer]") { check_p
 
 TEST_CASE("peel matches a CPU ray cast: warehouse", "[runtime][gbuffer]") { check_peel_against_ray_cast("warehouse", 5); }
 
-TEST_CASE("with a static camera, previous and reproject equal peel after two frames", "[runtime][gbuffer]") {
+TEST_CASE("with a static camera, previous and reproject equal peel after two frames (to float rounding)", "[runtime][gbuffer]") {
   HeadlessContext context;
   for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
     const Scene scene = make_builtin_scene(scene_name);
@@ -110,7 +110,18 @@ TEST_CASE("with a static camera, previous and reproject equal peel after two fra
         INFO(scene_name << " " << to_string(generator) << " " << output);
         const FloatImage expected = peel.read_pass_output(output);
         const FloatImage actual = single.read_pass_output(output);
-        REQUIRE(actual.pixels == expected.pixels);
+        REQUIRE(actual.pixels.size() == expected.pixels.size());
+        std::size_t differing = 0;
+        std::size_t first = 0;
+        for (std::size_t i = 0; i < actual.pixels.size(); ++i) {
+          // Layered (geometry shader) and plain rasterisation may round the
+          // interpolated depth differently in the last bit; anything more is a real difference.
+          const float tolerance = 1e-5f * std::max(std::abs(actual.pixels[i]), std::abs(expected.pixels[i])) + 1e-6f;
+          const bool presence_differs = (actual.pixels[i] == 0.0f) != (expected.pixels[i] == 0.0f);
+          if ((presence_differs || std::abs(actual.pixels[i] - expected.pixels[i]) > tolerance) && differing++ == 0) first = i;
+        }
+        INFO("first difference at value " << first << ": " << actual.pixels[first] << " vs peel " << expected.pixels[first]);
+        REQUIRE(differing == 0);
       }
     }
   }
