@@ -124,3 +124,36 @@ TEST_CASE("the dump option writes every pass output as finite PFM images", "[run
   REQUIRE(colour.height == 91);
   REQUIRE(files == 13);
 }
+
+TEST_CASE("a glTF file renders with its base colour factor and emissive", "[runtime][cli][gltf]") {
+  const fs::path dir = scratch();
+  // A 2 m square facing +z, no normals (flat normals are derived), one material.
+  std::ofstream(dir / "square.gltf")
+      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)"
+      << R"(AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMA"}],)"
+      << R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
+      << R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
+      << R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+      << R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]},"emissiveFactor":[0.5,0.25,0]}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],)"
+      << R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+  const fs::path dump = dir / "gltf_dump";
+  fs::remove_all(dump);
+  const RunResult result = run_deepgi(fmt::format("--headless --scene '{}' --size 64x48 --output '{}' --dump '{}'",
+                                                  (dir / "square.gltf").string(), (dir / "square.png").string(), dump.string()));
+  INFO(result.stderr_text);
+  REQUIRE(result.status == 0);
+  const deepgi::FloatImage albedo = deepgi::read_pfm(dump / "gbuffer-albedo-layer0.pfm");
+  const deepgi::FloatImage emissive = deepgi::read_pfm(dump / "gbuffer-emissive-layer0.pfm");
+  const deepgi::FloatImage normal = deepgi::read_pfm(dump / "gbuffer-normal-layer0.pfm");
+  const int x = albedo.width / 2;
+  const int y = albedo.height / 2;
+  // 8-bit sRGB storage: within half a code step.
+  REQUIRE(albedo.at(x, y, 0) == Approx(0.2).epsilon(0.02));
+  REQUIRE(albedo.at(x, y, 1) == Approx(0.4).epsilon(0.02));
+  REQUIRE(albedo.at(x, y, 2) == Approx(0.6).epsilon(0.02));
+  REQUIRE(emissive.at(x, y, 0) == Approx(0.5).epsilon(0.02));
+  REQUIRE(emissive.at(x, y, 1) == Approx(0.25).epsilon(0.02));
+  // The square faces the camera (pitched 15 degrees down): camera-space normal mostly +z.
+  REQUIRE(normal.at(x, y, 2) > 0.9f);
+}
