@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -88,6 +90,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
   if (options.output.empty()) throw deepgi::InputError("--headless needs --output FILE.png");
   if (options.frames < 1) throw deepgi::InputError("--frames must be at least 1");
   check_output_path(options.output);
+  if (options.hidden_window && (!options.dump.empty() || options.print_timings)) {
+    throw deepgi::InputError("--hidden-window writes only the PNG (no --dump or --print-timings)");
+  }
   const deepgi::Scene scene = deepgi::load_scene(options.scene);
   if (options.hidden_window) {
     deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path, options.output);

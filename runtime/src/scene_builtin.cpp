@@ -115,7 +115,7 @@ Scene make_atrium() {
   builder.finish(scene);
 
   scene.key_light.kind = LightKind::directional;
-  scene.key_light.direction = glm::normalize(glm::vec3(0.35f, -0.8f, 0.5f));
+  scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -0.6f, -0.75f));  // from behind the default camera, low enough to reach into the gallery
   scene.key_light.colour = {1.0f, 0.95f, 0.85f};
   scene.key_light.intensity = 4.0f;
   scene.ambient = {0.07f, 0.08f, 0.10f};
