@@ -97,3 +97,43 @@ TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed 
   }
   REQUIRE(checked > 100);
 }
+
+TEST_CASE("motion vectors equal the CPU reprojection of layer-0 points into the previous camera", "[runtime][outputs]") {
+  HeadlessContext context;
+  const Scene scene = make_builtin_scene("atrium");
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.shadow_map_size = 256;
+  Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+  const Camera previous = camera_on_path(scene.camera_path, 40);
+  const Camera current = camera_on_path(scene.camera_path, 41);
+  renderer.render(previous);
+  renderer.render(current);
+  const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+  const FloatImage motion = renderer.read_pass_output("gbuffer-motion-layer0");
+  const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(current));
+  const glm::mat4 previous_view_projection = guard_band_projection(previous, settings) * camera_view_matrix(previous);
+  int checked = 0;
+  float largest = 0.0f;
+  for (int y = 0; y < depth.height; y += 2) {
+    for (int x = 0; x < depth.width; x += 2) {
+      const float d = depth.at(x, y);
+      if (d <= 0.0f) continue;
+      const glm::vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
+      const glm::vec3 camera_point = deepgi::testing::camera_ray(current, settings, pixel.x, pixel.y) * d;
+      const glm::vec4 clip = previous_view_projection * camera_to_world * glm::vec4(camera_point, 1.0f);
+      if (clip.w <= 0.0f) continue;
+      const glm::vec2 previous_pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) *
+                                       glm::vec2(float(depth.width), float(depth.height));
+      const glm::vec2 expected = pixel - previous_pixel;
+      const glm::vec2 actual(motion.at(x, y, 0), motion.at(x, y, 1));
+      INFO("pixel " << x << "," << y << " expected " << expected.x << "," << expected.y << " got " << actual.x << "," << actual.y);
+      REQUIRE(glm::length(actual - expected) <= 0.01f * glm::length(expected) + 0.05f);
+      largest = std::max(largest, glm::length(expected));
+      ++checked;
+    }
+  }
+  REQUIRE(checked > 1000);
+  REQUIRE(largest > 0.5f);  // the camera really moved between the frames
+}
