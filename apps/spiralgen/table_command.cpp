@@ -52,7 +52,7 @@ void run_table(const TableArgs& args) {
                                               show_progress ? draw_progress : nullptr);
     const std::string text = spiral::codegen::format_table(results, *format, provenance);
     if (args.out.empty())
-        fmt::print("{}", text);
+        spiral::codegen::write_stdout(text);
     else
         spiral::codegen::write_file_atomically(args.out, text);
 }
