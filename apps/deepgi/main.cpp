@@ -22,150 +22,190 @@ namespace {
 constexpr int exit_bad_input = 2;
 
 struct Options {
-  bool headless = false;
-  bool hidden_window = false;
-  std::string scene = "cornell";
-  std::string size = "1280x720";
-  int frames = 1;
-  std::string output;
-  std::string generator = "peel";
-  float min_separation = 0.5f;
-  float exposure = 1.0f;
-  float guard_band = 0.1f;
-  std::string view = "final";
-  std::string dump;
-  std::string timing = "auto";
-  bool camera_path = false;
-  bool print_timings = false;
-  deepgi::AoSettings ao;  // deep SAO flags (--ao-*)
+    bool headless = false;
+    bool hidden_window = false;
+    std::string scene = "cornell";
+    std::string size = "1280x720";
+    int frames = 1;
+    std::string output;
+    std::string generator = "peel";
+    float min_separation = 0.5f;
+    float exposure = 1.0f;
+    float guard_band = 0.1f;
+    std::string view = "final";
+    std::string dump;
+    std::string timing = "auto";
+    bool camera_path = false;
+    bool print_timings = false;
+    deepgi::AoSettings ao;  // deep SAO flags (--ao-*)
 };
 
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
-  static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) {
-    throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT (for example 1280x720)", text));
-  }
-  settings.width = std::stoi(match[1].str());
-  settings.height = std::stoi(match[2].str());
-  if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
-    throw deepgi::InputError(fmt::format("--size {} is out of range (1 to 16384 per side)", text));
-  }
+    static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        throw deepgi::InputError(
+            fmt::format("--size '{}' is not WIDTHxHEIGHT (for example 1280x720)", text));
+    }
+    settings.width = std::stoi(match[1].str());
+    settings.height = std::stoi(match[2].str());
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
+        settings.height > 16384) {
+        throw deepgi::InputError(
+            fmt::format("--size {} is out of range (1 to 16384 per side)", text));
+    }
 }
 
 void check_output_path(const fs::path& output) {
-  const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist", output.string(), parent.string()));
-  }
-  if (fs::is_directory(output)) throw deepgi::InputError(fmt::format("--output '{}' is a directory", output.string()));
+    const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
+    if (!fs::is_directory(parent)) {
+        throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist",
+                                             output.string(), parent.string()));
+    }
+    if (fs::is_directory(output))
+        throw deepgi::InputError(fmt::format("--output '{}' is a directory", output.string()));
 }
 
 deepgi::RenderSettings settings_from(const Options& options) {
-  deepgi::RenderSettings settings;
-  parse_size(options.size, settings);
-  const auto generator = deepgi::parse_generator(options.generator);
-  if (!generator) throw deepgi::InputError(fmt::format("--generator '{}' is not one of peel, previous, reproject", options.generator));
-  settings.generator = *generator;
-  const auto view = deepgi::parse_debug_view(options.view);
-  if (!view) throw deepgi::InputError(fmt::format("--view '{}' is not a debug view (see --help)", options.view));
-  settings.view = *view;
-  if (!(options.min_separation >= 0.0f) || !std::isfinite(options.min_separation)) {
-    throw deepgi::InputError("--min-separation must be a finite number of metres >= 0");
-  }
-  settings.min_separation = options.min_separation;
-  if (!(options.exposure > 0.0f) || !std::isfinite(options.exposure)) throw deepgi::InputError("--exposure must be > 0");
-  settings.exposure = options.exposure;
-  if (!(options.guard_band >= 0.0f && options.guard_band <= 1.0f)) throw deepgi::InputError("--guard-band must be in [0, 1]");
-  settings.guard_band_fraction = options.guard_band;
-  if (options.timing == "auto") settings.timing = deepgi::TimingMode::automatic;
-  else if (options.timing == "cpu") settings.timing = deepgi::TimingMode::cpu;
-  else if (options.timing == "gpu") settings.timing = deepgi::TimingMode::gpu;
-  else throw deepgi::InputError(fmt::format("--timing '{}' is not one of auto, cpu, gpu", options.timing));
-  settings.ao = options.ao;
-  return settings;
+    deepgi::RenderSettings settings;
+    parse_size(options.size, settings);
+    const auto generator = deepgi::parse_generator(options.generator);
+    if (!generator)
+        throw deepgi::InputError(fmt::format(
+            "--generator '{}' is not one of peel, previous, reproject", options.generator));
+    settings.generator = *generator;
+    const auto view = deepgi::parse_debug_view(options.view);
+    if (!view)
+        throw deepgi::InputError(
+            fmt::format("--view '{}' is not a debug view (see --help)", options.view));
+    settings.view = *view;
+    if (!(options.min_separation >= 0.0f) || !std::isfinite(options.min_separation)) {
+        throw deepgi::InputError("--min-separation must be a finite number of metres >= 0");
+    }
+    settings.min_separation = options.min_separation;
+    if (!(options.exposure > 0.0f) || !std::isfinite(options.exposure))
+        throw deepgi::InputError("--exposure must be > 0");
+    settings.exposure = options.exposure;
+    if (!(options.guard_band >= 0.0f && options.guard_band <= 1.0f))
+        throw deepgi::InputError("--guard-band must be in [0, 1]");
+    settings.guard_band_fraction = options.guard_band;
+    if (options.timing == "auto")
+        settings.timing = deepgi::TimingMode::automatic;
+    else if (options.timing == "cpu")
+        settings.timing = deepgi::TimingMode::cpu;
+    else if (options.timing == "gpu")
+        settings.timing = deepgi::TimingMode::gpu;
+    else
+        throw deepgi::InputError(
+            fmt::format("--timing '{}' is not one of auto, cpu, gpu", options.timing));
+    settings.ao = options.ao;
+    return settings;
 }
 
 int run_headless(const Options& options, const deepgi::RenderSettings& settings) {
-  if (options.output.empty()) throw deepgi::InputError("--headless needs --output FILE.png");
-  if (options.frames < 1) throw deepgi::InputError("--frames must be at least 1");
-  check_output_path(options.output);
-  if (options.hidden_window && (!options.dump.empty() || options.print_timings)) {
-    throw deepgi::InputError("--hidden-window writes only the PNG (no --dump or --print-timings)");
-  }
-  const deepgi::Scene scene = deepgi::load_scene(options.scene);
-  if (options.hidden_window) {
-    deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path, options.output);
+    if (options.output.empty()) throw deepgi::InputError("--headless needs --output FILE.png");
+    if (options.frames < 1) throw deepgi::InputError("--frames must be at least 1");
+    check_output_path(options.output);
+    if (options.hidden_window && (!options.dump.empty() || options.print_timings)) {
+        throw deepgi::InputError(
+            "--hidden-window writes only the PNG (no --dump or --print-timings)");
+    }
+    const deepgi::Scene scene = deepgi::load_scene(options.scene);
+    if (options.hidden_window) {
+        deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
+                                     options.output);
+        return 0;
+    }
+    deepgi::HeadlessContext context;
+    deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    for (int frame = 0; frame < options.frames; ++frame) {
+        renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
+                                            : scene.default_camera);
+    }
+    deepgi::write_png(options.output, settings.width, settings.height,
+                      renderer.read_output_rgba8());
+    if (!options.dump.empty()) renderer.dump_pass_outputs(options.dump);
+    if (options.print_timings) {
+        const auto info = deepgi::query_context_info();
+        fmt::print(
+            "renderer: {} ({})\n", info.renderer,
+            renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish" : "GL timer queries");
+        for (const auto& timing : renderer.last_timings())
+            fmt::print("{:<14} {:8.3f} ms\n", timing.pass, timing.milliseconds);
+    }
     return 0;
-  }
-  deepgi::HeadlessContext context;
-  deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
-  for (int frame = 0; frame < options.frames; ++frame) {
-    renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame) : scene.default_camera);
-  }
-  deepgi::write_png(options.output, settings.width, settings.height, renderer.read_output_rgba8());
-  if (!options.dump.empty()) renderer.dump_pass_outputs(options.dump);
-  if (options.print_timings) {
-    const auto info = deepgi::query_context_info();
-    fmt::print("renderer: {} ({})\n", info.renderer, renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish" : "GL timer queries");
-    for (const auto& timing : renderer.last_timings()) fmt::print("{:<14} {:8.3f} ms\n", timing.pass, timing.milliseconds);
-  }
-  return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  CLI::App app{"deepgi: deep G-buffer demo renderer (OpenGL 4.5)"};
-  app.add_flag("--headless", options.headless, "Render without a window (EGL) and write --output");
-  app.add_flag("--hidden-window", options.hidden_window,
-               "With --headless: render in a hidden GLFW window instead of EGL (needs an X server, e.g. xvfb-run)");
-  app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
-  app.add_option("--size", options.size, "Image size WIDTHxHEIGHT");
-  app.add_option("--frames", options.frames, "Frames to render before writing the output");
-  app.add_option("--output", options.output, "PNG file to write (headless)");
-  app.add_option("--generator", options.generator, "Deep G-buffer generator: peel, previous, reproject");
-  app.add_option("--min-separation", options.min_separation, "Minimum camera-space distance of layer 1 behind layer 0 (m)");
-  app.add_option("--exposure", options.exposure, "Exposure multiplier before the tonemap");
-  app.add_option("--guard-band", options.guard_band, "Guard band on every side, as a fraction of the height");
-  app.add_option("--view", options.view,
-                 "final, normal-layer0/1, albedo-layer0/1, emissive, motion, depth-layer0/1, direct-layer0/1, "
-                 "ao-raw, ao-blurred");
-  app.add_option("--dump", options.dump, "Directory for 32-bit float PFM images of every pass output (headless)");
-  app.add_option("--timing", options.timing, "Pass timing: auto, cpu (glFinish + clock), gpu (timer queries)");
-  app.add_flag("--camera-path", options.camera_path, "Move along the scene's camera path, one step per frame");
-  app.add_flag("--print-timings", options.print_timings, "Print the last frame's per-pass milliseconds");
-  // Deep SAO (docs/deep-sao.md); values are checked by the renderer.
-  app.add_option("--ao-layers", options.ao.layers, "Deep SAO: G-buffer layers the taps test, 1 or 2")->capture_default_str();
-  app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")->capture_default_str();
-  app.add_option("--ao-bias", options.ao.bias, "Deep SAO: bias beta (m)")->capture_default_str();
-  app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")->capture_default_str();
-  app.add_option("--ao-q", options.ao.q, "Deep SAO: tap radius (px) per MIP level step")->capture_default_str();
-  app.add_option("--ao-max-mip", options.ao.max_mip_level, "Deep SAO: deepest depth-pyramid level")->capture_default_str();
+    Options options;
+    CLI::App app{"deepgi: deep G-buffer demo renderer (OpenGL 4.5)"};
+    app.add_flag("--headless", options.headless,
+                 "Render without a window (EGL) and write --output");
+    app.add_flag("--hidden-window", options.hidden_window,
+                 "With --headless: render in a hidden GLFW window instead of EGL (needs an X "
+                 "server, e.g. xvfb-run)");
+    app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
+    app.add_option("--size", options.size, "Image size WIDTHxHEIGHT");
+    app.add_option("--frames", options.frames, "Frames to render before writing the output");
+    app.add_option("--output", options.output, "PNG file to write (headless)");
+    app.add_option("--generator", options.generator,
+                   "Deep G-buffer generator: peel, previous, reproject");
+    app.add_option("--min-separation", options.min_separation,
+                   "Minimum camera-space distance of layer 1 behind layer 0 (m)");
+    app.add_option("--exposure", options.exposure, "Exposure multiplier before the tonemap");
+    app.add_option("--guard-band", options.guard_band,
+                   "Guard band on every side, as a fraction of the height");
+    app.add_option("--view", options.view,
+                   "final, normal-layer0/1, albedo-layer0/1, emissive, motion, depth-layer0/1, "
+                   "direct-layer0/1, "
+                   "ao-raw, ao-blurred");
+    app.add_option("--dump", options.dump,
+                   "Directory for 32-bit float PFM images of every pass output (headless)");
+    app.add_option("--timing", options.timing,
+                   "Pass timing: auto, cpu (glFinish + clock), gpu (timer queries)");
+    app.add_flag("--camera-path", options.camera_path,
+                 "Move along the scene's camera path, one step per frame");
+    app.add_flag("--print-timings", options.print_timings,
+                 "Print the last frame's per-pass milliseconds");
+    // Deep SAO (docs/deep-sao.md); values are checked by the renderer.
+    app.add_option("--ao-layers", options.ao.layers,
+                   "Deep SAO: G-buffer layers the taps test, 1 or 2")
+        ->capture_default_str();
+    app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
+        ->capture_default_str();
+    app.add_option("--ao-bias", options.ao.bias, "Deep SAO: bias beta (m)")->capture_default_str();
+    app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
+        ->capture_default_str();
+    app.add_option("--ao-q", options.ao.q, "Deep SAO: tap radius (px) per MIP level step")
+        ->capture_default_str();
+    app.add_option("--ao-max-mip", options.ao.max_mip_level,
+                   "Deep SAO: deepest depth-pyramid level")
+        ->capture_default_str();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    fmt::print("{}", app.help());
-    return 0;
-  } catch (const CLI::ParseError& error) {
-    std::string message = error.what();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    fmt::print(stderr, "deepgi: error: {}\n", message);
-    return exit_bad_input;
-  }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        fmt::print("{}", app.help());
+        return 0;
+    } catch (const CLI::ParseError& error) {
+        std::string message = error.what();
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        fmt::print(stderr, "deepgi: error: {}\n", message);
+        return exit_bad_input;
+    }
 
-  try {
-    const deepgi::RenderSettings settings = settings_from(options);
-    if (options.headless) return run_headless(options, settings);
-    if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
-    return deepgi::run_interactive(options.scene, settings);
-  } catch (const deepgi::InputError& error) {
-    fmt::print(stderr, "deepgi: error: {}\n", error.what());
-    return exit_bad_input;
-  } catch (const std::exception& error) {
-    fmt::print(stderr, "deepgi: error: {}\n", error.what());
-    return 1;
-  }
+    try {
+        const deepgi::RenderSettings settings = settings_from(options);
+        if (options.headless) return run_headless(options, settings);
+        if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
+        return deepgi::run_interactive(options.scene, settings);
+    } catch (const deepgi::InputError& error) {
+        fmt::print(stderr, "deepgi: error: {}\n", error.what());
+        return exit_bad_input;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "deepgi: error: {}\n", error.what());
+        return 1;
+    }
 }

@@ -33,23 +33,27 @@ std::string describe_text(const spiral::Discrepancy& d) {
     const std::int64_t four_n = 2 * two_n;
     const bool too_many = s.closed;
     const std::string lo = fraction(s.radial_lo, two_n), hi = fraction(s.radial_hi, two_n);
-    const std::string radius = s.closed ? fmt::format("radius from {} to {} of R (inclusive)", lo, hi)
-                                        : fmt::format("radius strictly between {} and {} of R", lo, hi);
+    const std::string radius = s.closed
+                                   ? fmt::format("radius from {} to {} of R (inclusive)", lo, hi)
+                                   : fmt::format("radius strictly between {} and {} of R", lo, hi);
     const std::string from = fraction(s.arc_start, two_n);
     const std::string to = fraction((s.arc_start + s.arc_length) % two_n, two_n);
     std::string arc;
     if (s.arc_length == two_n)
         arc = s.closed ? "the whole circle" : fmt::format("every angle except {} turn", from);
     else
-        arc = fmt::format("angle {} {} {} {} turn, counter-clockwise ({} turn)", s.closed ? "from" : "strictly between",
-                          from, s.closed ? "to" : "and", to, fraction(s.arc_length, two_n));
-    std::string text = fmt::format("D({}, {}) = {} / {} = {:.9g}\n", d.n, d.tau, d.scaled, d.denominator(), d.value());
+        arc = fmt::format("angle {} {} {} {} turn, counter-clockwise ({} turn)",
+                          s.closed ? "from" : "strictly between", from, s.closed ? "to" : "and", to,
+                          fraction(s.arc_length, two_n));
+    std::string text = fmt::format("D({}, {}) = {} / {} = {:.9g}\n", d.n, d.tau, d.scaled,
+                                   d.denominator(), d.value());
     text += fmt::format("worst sector ({}): {}; {}\n", s.closed ? "closed" : "open", radius, arc);
-    text += fmt::format("it holds {} of {} taps ({:.6g}) but its weighted area is {} ({:.6g}): {} taps\n", s.count,
-                        d.n, double(s.count) / d.n, fraction(s.scaled_area(), d.denominator()),
-                        double(s.scaled_area()) / double(d.denominator()), too_many ? "too many" : "too few");
-    text += fmt::format("|4n * count - width * arc| = |{} - {}| = {} (in units of 1/(2n))\n", four_n * s.count,
-                        s.scaled_area(), d.scaled);
+    text += fmt::format(
+        "it holds {} of {} taps ({:.6g}) but its weighted area is {} ({:.6g}): {} taps\n", s.count,
+        d.n, double(s.count) / d.n, fraction(s.scaled_area(), d.denominator()),
+        double(s.scaled_area()) / double(d.denominator()), too_many ? "too many" : "too few");
+    text += fmt::format("|4n * count - width * arc| = |{} - {}| = {} (in units of 1/(2n))\n",
+                        four_n * s.count, s.scaled_area(), d.scaled);
     return text;
 }
 
@@ -61,8 +65,9 @@ std::string describe_json(const spiral::Discrepancy& d) {
         "\"worst_sector\":{{\"closed\":{},\"radial\":{{\"lo\":{},\"hi\":{},\"den\":{}}},"
         "\"arc\":{{\"start\":{},\"length\":{},\"den\":{}}},\"count\":{},"
         "\"weighted_area\":{{\"num\":{},\"den\":{}}}}}}}\n",
-        d.n, d.tau, d.scaled, d.denominator(), d.value(), s.closed ? "true" : "false", s.radial_lo, s.radial_hi,
-        two_n, s.arc_start, s.arc_length, two_n, s.count, s.scaled_area(), d.denominator());
+        d.n, d.tau, d.scaled, d.denominator(), d.value(), s.closed ? "true" : "false", s.radial_lo,
+        s.radial_hi, two_n, s.arc_start, s.arc_length, two_n, s.count, s.scaled_area(),
+        d.denominator());
 }
 
 void run_discrepancy(const DiscrepancyArgs& args) {
@@ -79,11 +84,12 @@ void run_discrepancy(const DiscrepancyArgs& args) {
 
 void add_discrepancy_command(CLI::App& app) {
     auto args = std::make_shared<DiscrepancyArgs>();
-    CLI::App* command =
-        app.add_subcommand("discrepancy", "Exact annular-sector discrepancy of one spiral, and its worst sector");
+    CLI::App* command = app.add_subcommand(
+        "discrepancy", "Exact annular-sector discrepancy of one spiral, and its worst sector");
     command->add_option("--n", args->n, "Tap count")->required();
     command->add_option("--tau", args->tau, "Number of spiral turns")->required();
-    command->add_option("--format", args->format, "Output format: text or json")->capture_default_str();
+    command->add_option("--format", args->format, "Output format: text or json")
+        ->capture_default_str();
     command->callback([args] { run_discrepancy(*args); });
 }
 

@@ -28,10 +28,8 @@ void run_header(const HeaderArgs& args) {
         throw UsageError(fmt::format("--pass: {}", e.what()));
     }
     if (args.taps < 1 || args.taps > spiral::kMaxTaps)
-        throw UsageError(
-            fmt::format("--taps {} is outside [1, {}]", args.taps, spiral::kMaxTaps));
-    if (args.tau && *args.tau < 1)
-        throw UsageError(fmt::format("--tau {} is below 1", *args.tau));
+        throw UsageError(fmt::format("--taps {} is outside [1, {}]", args.taps, spiral::kMaxTaps));
+    if (args.tau && *args.tau < 1) throw UsageError(fmt::format("--tau {} is below 1", *args.tau));
 
     // Recorded canonically and without --out: the bytes depend only on the
     // pass, the tap count and tau, not on where they are written.

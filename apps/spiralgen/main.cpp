@@ -20,7 +20,8 @@ int fail(std::string message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"spiralgen: optimal spiral sample patterns and the shader headers that carry them"};
+    CLI::App app{
+        "spiralgen: optimal spiral sample patterns and the shader headers that carry them"};
     app.name("spiralgen");
     app.require_subcommand(1);
     spiralgen::add_table_command(app);

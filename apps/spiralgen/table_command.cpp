@@ -33,23 +33,30 @@ void draw_progress(int done, int total) {
 
 void run_table(const TableArgs& args) {
     if (args.min_n < 1 || args.min_n > spiral::kMaxTaps)
-        throw UsageError(fmt::format("--min-n {} is outside [1, {}]", args.min_n, spiral::kMaxTaps));
+        throw UsageError(
+            fmt::format("--min-n {} is outside [1, {}]", args.min_n, spiral::kMaxTaps));
     if (args.max_n < 1 || args.max_n > spiral::kMaxTaps)
-        throw UsageError(fmt::format("--max-n {} is outside [1, {}]", args.max_n, spiral::kMaxTaps));
+        throw UsageError(
+            fmt::format("--max-n {} is outside [1, {}]", args.max_n, spiral::kMaxTaps));
     if (args.min_n > args.max_n)
-        throw UsageError(fmt::format("--min-n {} is larger than --max-n {}", args.min_n, args.max_n));
-    if (args.jobs < 0) throw UsageError(fmt::format("--jobs {} is negative (0 means all hardware threads)", args.jobs));
+        throw UsageError(
+            fmt::format("--min-n {} is larger than --max-n {}", args.min_n, args.max_n));
+    if (args.jobs < 0)
+        throw UsageError(
+            fmt::format("--jobs {} is negative (0 means all hardware threads)", args.jobs));
     const auto format = spiral::codegen::parse_table_format(args.format);
     if (!format)
-        throw UsageError(fmt::format("unknown --format '{}' (expected cpp, glsl, json, csv or md)", args.format));
+        throw UsageError(fmt::format("unknown --format '{}' (expected cpp, glsl, json, csv or md)",
+                                     args.format));
 
     // The command is recorded without --out or --jobs: neither changes the bytes.
-    const spiral::codegen::Provenance provenance{
-        fmt::format("spiralgen table --min-n {} --max-n {} --format {}", args.min_n, args.max_n, args.format)};
+    const spiral::codegen::Provenance provenance{fmt::format(
+        "spiralgen table --min-n {} --max-n {} --format {}", args.min_n, args.max_n, args.format)};
 
     const bool show_progress = isatty(fileno(stderr)) != 0;
-    const auto results = spiral::search_range(args.min_n, args.max_n, spiral::SearchOptions{args.jobs},
-                                              show_progress ? draw_progress : nullptr);
+    const auto results =
+        spiral::search_range(args.min_n, args.max_n, spiral::SearchOptions{args.jobs},
+                             show_progress ? draw_progress : nullptr);
     const std::string text = spiral::codegen::format_table(results, *format, provenance);
     if (args.out.empty())
         spiral::codegen::write_stdout(text);
@@ -61,12 +68,16 @@ void run_table(const TableArgs& args) {
 
 void add_table_command(CLI::App& app) {
     auto args = std::make_shared<TableArgs>();
-    CLI::App* command = app.add_subcommand("table", "Tabulate the optimal spiral turns tau for each tap count n");
+    CLI::App* command =
+        app.add_subcommand("table", "Tabulate the optimal spiral turns tau for each tap count n");
     command->add_option("--min-n", args->min_n, "Smallest tap count")->capture_default_str();
     command->add_option("--max-n", args->max_n, "Largest tap count")->capture_default_str();
-    command->add_option("--format", args->format, "Output format: cpp, glsl, json, csv or md")->capture_default_str();
-    command->add_option("--out", args->out, "Write to this file (atomically) instead of standard output");
-    command->add_option("--jobs", args->jobs, "Worker threads; 0 (the default) uses all hardware threads");
+    command->add_option("--format", args->format, "Output format: cpp, glsl, json, csv or md")
+        ->capture_default_str();
+    command->add_option("--out", args->out,
+                        "Write to this file (atomically) instead of standard output");
+    command->add_option("--jobs", args->jobs,
+                        "Worker threads; 0 (the default) uses all hardware threads");
     command->callback([args] { run_table(*args); });
 }
 

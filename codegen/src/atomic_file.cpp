@@ -34,7 +34,9 @@ struct TemporaryFile {
     }
 };
 
-std::string errno_text(int error) { return std::strerror(error); }
+std::string errno_text(int error) {
+    return std::strerror(error);
+}
 
 }  // namespace
 
@@ -62,9 +64,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
             break;
         }
         if (errno != EEXIST || attempt > 100)
-            fail(path, fmt::format("cannot create a temporary file in '{}': {}",
-                                   directory.empty() ? "." : directory.string(),
-                                   errno_text(errno)));
+            fail(path,
+                 fmt::format("cannot create a temporary file in '{}': {}",
+                             directory.empty() ? "." : directory.string(), errno_text(errno)));
     }
 
     const char* data = contents.data();

@@ -8,7 +8,9 @@
 
 namespace spiral::codegen {
 
-double default_blur_sigma(int radius) { return radius > 0 ? radius / 2.0 : 0.5; }
+double default_blur_sigma(int radius) {
+    return radius > 0 ? radius / 2.0 : 0.5;
+}
 
 BlurKernel gaussian_kernel(int radius, std::optional<double> sigma) {
     constexpr int max_radius = 1024;
@@ -39,9 +41,8 @@ BlurKernel gaussian_kernel(int radius, std::optional<double> sigma) {
 std::string format_blur_header(const BlurKernel& kernel, const Provenance& provenance) {
     const int radius = kernel.radius;
     if (radius < 0 || kernel.weights.size() != static_cast<std::size_t>(2 * radius + 1))
-        throw std::invalid_argument(fmt::format(
-            "blur header: radius {} needs {} weights, got {}", radius, 2 * radius + 1,
-            kernel.weights.size()));
+        throw std::invalid_argument(fmt::format("blur header: radius {} needs {} weights, got {}",
+                                                radius, 2 * radius + 1, kernel.weights.size()));
     std::string out = detail::banner(
         provenance, "Gaussian blur kernel",
         fmt::format("radius {}, sigma {}", radius, detail::double_text(kernel.sigma)));
@@ -62,9 +63,10 @@ std::string format_blur_header(const BlurKernel& kernel, const Provenance& prove
         "const float BLUR_WEIGHTS[2 * BLUR_RADIUS + 1] = float[](\n",
         radius, detail::float_literal(static_cast<float>(kernel.sigma)));
     for (int k = -radius; k <= radius; ++k)
-        out += fmt::format("    {}{}  // k = {}\n",
-                           detail::float_literal(kernel.weights[static_cast<std::size_t>(k + radius)]),
-                           k < radius ? "," : "", k);
+        out +=
+            fmt::format("    {}{}  // k = {}\n",
+                        detail::float_literal(kernel.weights[static_cast<std::size_t>(k + radius)]),
+                        k < radius ? "," : "", k);
     out += ");\n\n#endif  // SPIRAL_BLUR_KERNEL_GLSL\n";
     return out;
 }

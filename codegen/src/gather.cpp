@@ -22,8 +22,7 @@ std::string macro_prefix(std::string_view pass_name) {
     for (char c : pass_name) {
         const auto byte = static_cast<unsigned char>(c);
         if (byte < 0x20 || byte >= 0x7f)
-            throw std::invalid_argument(
-                "pass name has characters outside printable ASCII");
+            throw std::invalid_argument("pass name has characters outside printable ASCII");
         const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
         const bool digit = c >= '0' && c <= '9';
         if (!letter && !digit) {
@@ -36,15 +35,13 @@ std::string macro_prefix(std::string_view pass_name) {
     }
     const std::string shown = detail::printable_ascii(pass_name);
     if (prefix.empty())
-        throw std::invalid_argument(
-            fmt::format("pass name '{}' has no letter or digit", shown));
+        throw std::invalid_argument(fmt::format("pass name '{}' has no letter or digit", shown));
     if (prefix.front() >= '0' && prefix.front() <= '9')
         throw std::invalid_argument(
             fmt::format("pass name '{}' starts with a digit; a macro prefix cannot", shown));
     if (prefix.starts_with("GL_"))
-        throw std::invalid_argument(
-            fmt::format("pass name '{}' gives the prefix {}, which GLSL reserves (GL_)", shown,
-                        prefix));
+        throw std::invalid_argument(fmt::format(
+            "pass name '{}' gives the prefix {}, which GLSL reserves (GL_)", shown, prefix));
     return prefix;
 }
 
@@ -76,10 +73,20 @@ std::vector<Tap> spiral_taps(int n, int tau) {
         }
         double x = c, y = s;
         switch (quadrant) {
-            case 0: break;
-            case 1: x = -s; y = c; break;
-            case 2: x = -c; y = -s; break;
-            default: x = s; y = -c; break;
+            case 0:
+                break;
+            case 1:
+                x = -s;
+                y = c;
+                break;
+            case 2:
+                x = -c;
+                y = -s;
+                break;
+            default:
+                x = s;
+                y = -c;
+                break;
         }
         // + 0.0f turns -0 into +0, so equal patterns give equal bits.
         taps.push_back(Tap{static_cast<float>(alpha), static_cast<float>(alpha * x) + 0.0f,
@@ -106,15 +113,15 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
         throw std::invalid_argument(fmt::format(
             "gather header: chosen pattern has n = {}, optimum has n = {}", chosen.n, n));
     if (chosen.scaled < optimum.scaled)
-        throw std::invalid_argument(fmt::format(
-            "gather header: chosen tau {} has K = {}, below the optimum's {}", chosen.tau,
-            chosen.scaled, optimum.scaled));
+        throw std::invalid_argument(
+            fmt::format("gather header: chosen tau {} has K = {}, below the optimum's {}",
+                        chosen.tau, chosen.scaled, optimum.scaled));
     const bool ties_optimum =
         std::find(optimum.ties.begin(), optimum.ties.end(), chosen.tau) != optimum.ties.end();
     if (ties_optimum && chosen.scaled != optimum.scaled)
-        throw std::invalid_argument(fmt::format(
-            "gather header: tau {} is listed as optimal but has K = {}, not {}", chosen.tau,
-            chosen.scaled, optimum.scaled));
+        throw std::invalid_argument(
+            fmt::format("gather header: tau {} is listed as optimal but has K = {}, not {}",
+                        chosen.tau, chosen.scaled, optimum.scaled));
 
     const std::int64_t den = optimum.denominator();
     const std::string pass = detail::printable_ascii(spec.pass);
@@ -126,12 +133,12 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
     std::string inputs;
     if (chosen.tau == optimum.tau) {
         inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (the optimum)", pass, n, chosen.tau);
-        verdict = fmt::format(
-            "// {}: the minimum over tau in [1, {}], reached by tau = {}.\n", optimum_text, n,
-            ties);
+        verdict = fmt::format("// {}: the minimum over tau in [1, {}], reached by tau = {}.\n",
+                              optimum_text, n, ties);
     } else if (chosen.scaled == optimum.scaled) {
-        inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; ties with the optimum)",
-                             pass, n, chosen.tau);
+        inputs =
+            fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; ties with the optimum)",
+                        pass, n, chosen.tau);
         verdict = fmt::format(
             "// tau = {} was set by hand. It is not the smallest optimal tau ({}) but its\n"
             "// discrepancy is the same: {}.\n",
@@ -145,13 +152,13 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
             "//   chosen:  {}\n"
             "//   optimum: {} (tau = {})\n",
             chosen.tau, chosen.scaled - optimum.scaled, den,
-            detail::double_text(double(chosen.scaled - optimum.scaled) / double(den)),
-            chosen_text, optimum_text, ties);
+            detail::double_text(double(chosen.scaled - optimum.scaled) / double(den)), chosen_text,
+            optimum_text, ties);
     }
 
     const std::vector<Tap> taps = spiral_taps(n, chosen.tau);
-    std::string out = detail::banner(provenance, fmt::format("Spiral taps for pass \"{}\"", pass),
-                                     inputs);
+    std::string out =
+        detail::banner(provenance, fmt::format("Spiral taps for pass \"{}\"", pass), inputs);
     out += fmt::format(
         "//\n"
         "// Tap i (0 <= i < {0}_NUM_TAPS) lies at radius fraction alpha_i = (i + 1/2) / n and\n"
@@ -193,8 +200,7 @@ std::string make_gather_header(std::string_view pass, int taps, std::optional<in
     if (taps < 1 || taps > kMaxTaps)
         throw std::invalid_argument(
             fmt::format("tap count must be in [1, {}], got {}", kMaxTaps, taps));
-    if (tau && *tau < 1)
-        throw std::invalid_argument(fmt::format("tau must be >= 1, got {}", *tau));
+    if (tau && *tau < 1) throw std::invalid_argument(fmt::format("tau must be >= 1, got {}", *tau));
     GatherSpec spec;
     spec.pass = std::string(pass);
     spec.optimum = search(taps);

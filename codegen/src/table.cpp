@@ -19,11 +19,16 @@ std::optional<TableFormat> parse_table_format(std::string_view name) {
 
 std::string_view to_string(TableFormat format) {
     switch (format) {
-        case TableFormat::cpp: return "cpp";
-        case TableFormat::glsl: return "glsl";
-        case TableFormat::json: return "json";
-        case TableFormat::csv: return "csv";
-        case TableFormat::md: return "md";
+        case TableFormat::cpp:
+            return "cpp";
+        case TableFormat::glsl:
+            return "glsl";
+        case TableFormat::json:
+            return "json";
+        case TableFormat::csv:
+            return "csv";
+        case TableFormat::md:
+            return "md";
     }
     throw std::invalid_argument("unknown table format");
 }
@@ -35,9 +40,9 @@ void check_results(const std::vector<SearchResult>& results) {
     int previous = 0;
     for (const SearchResult& r : results) {
         if (r.n <= previous)
-            throw std::invalid_argument(fmt::format(
-                "format_table: n must be >= 1 and strictly ascending, got {} after {}", r.n,
-                previous));
+            throw std::invalid_argument(
+                fmt::format("format_table: n must be >= 1 and strictly ascending, got {} after {}",
+                            r.n, previous));
         previous = r.n;
     }
 }
@@ -103,8 +108,7 @@ std::string format_cpp(const std::vector<SearchResult>& results, const Provenanc
 
 std::string format_glsl(const std::vector<SearchResult>& results, const Provenance& provenance) {
     const std::vector<int> turns = dense_turns(results);
-    std::string out =
-        detail::banner(provenance, "Spiral turns table (GLSL)", inputs_text(results));
+    std::string out = detail::banner(provenance, "Spiral turns table (GLSL)", inputs_text(results));
     out += fmt::format(
         "//\n"
         "// SPIRAL_TURNS[n] is the number of spiral turns for an n-tap pattern.\n"
@@ -159,11 +163,16 @@ std::string format_table(const std::vector<SearchResult>& results, TableFormat f
                          const Provenance& provenance) {
     check_results(results);
     switch (format) {
-        case TableFormat::cpp: return format_cpp(results, provenance);
-        case TableFormat::glsl: return format_glsl(results, provenance);
-        case TableFormat::json: return format_json(results);
-        case TableFormat::csv: return format_csv(results);
-        case TableFormat::md: return format_md(results);
+        case TableFormat::cpp:
+            return format_cpp(results, provenance);
+        case TableFormat::glsl:
+            return format_glsl(results, provenance);
+        case TableFormat::json:
+            return format_json(results);
+        case TableFormat::csv:
+            return format_csv(results);
+        case TableFormat::md:
+            return format_md(results);
     }
     throw std::invalid_argument("format_table: unknown table format");
 }

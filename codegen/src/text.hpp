@@ -15,8 +15,7 @@ std::string printable_ascii(std::string_view text);
 // The "generated" banner every commented file opens with: one `// ` line each.
 // The command is wrapped in backticks so it never ends in a backslash, which
 // would splice the next line into the comment in both C++ and GLSL.
-std::string banner(const Provenance& provenance, std::string_view what,
-                   std::string_view inputs);
+std::string banner(const Provenance& provenance, std::string_view what, std::string_view inputs);
 
 // The shortest decimal text that reads back as the same float, always with a
 // '.' or an exponent so GLSL and C++ see a floating literal ("1" -> "1.0").

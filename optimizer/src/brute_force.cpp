@@ -41,7 +41,8 @@ public:
 private:
     std::int64_t index(std::int64_t x, std::int64_t y) const { return x * cols_ + y; }
     // radial in [x_lo, x_hi], angular in [y_lo, y_hi)
-    std::int64_t rect(std::int64_t x_lo, std::int64_t x_hi, std::int64_t y_lo, std::int64_t y_hi) const {
+    std::int64_t rect(std::int64_t x_lo, std::int64_t x_hi, std::int64_t y_lo,
+                      std::int64_t y_hi) const {
         return table_[index(x_hi + 1, y_hi)] - table_[index(x_lo, y_hi)] -
                table_[index(x_hi + 1, y_lo)] + table_[index(x_lo, y_lo)];
     }
@@ -66,7 +67,8 @@ Discrepancy discrepancy_brute_force(int n, int tau) {
     }
     std::sort(radial_edges.begin(), radial_edges.end());
     std::sort(angular_edges.begin(), angular_edges.end());
-    angular_edges.erase(std::unique(angular_edges.begin(), angular_edges.end()), angular_edges.end());
+    angular_edges.erase(std::unique(angular_edges.begin(), angular_edges.end()),
+                        angular_edges.end());
 
     Discrepancy result{n, tau, -1, {}};
     auto consider = [&](const Sector& sector) {
@@ -90,8 +92,9 @@ Discrepancy discrepancy_brute_force(int n, int tau) {
                     Sector closed{true, a, b, start, length, counts.count(a, b, start, length + 1)};
                     consider(closed);
                     if (a < b && length > 0) {
-                        Sector open{false, a, b, start, length,
-                                    counts.count(a + 1, b - 1, start + 1, length - 1)};
+                        Sector open{false,  a,
+                                    b,      start,
+                                    length, counts.count(a + 1, b - 1, start + 1, length - 1)};
                         consider(open);
                     }
                 }

@@ -89,10 +89,12 @@ struct BandWorst {
 
 // Closed sectors of a band of m taps and width W: the best non-wrapping closed
 // arc, or the complement of the best non-wrapping open arc.
-BandWorst worst_closed(const ArcScan& scan, std::int64_t four_n, std::int64_t two_n, std::int64_t m) {
+BandWorst worst_closed(const ArcScan& scan, std::int64_t four_n, std::int64_t two_n,
+                       std::int64_t m) {
     BandWorst worst;
     worst.excess = scan.best_closed;
-    worst.arc = {true, 0, 0, scan.closed_start, scan.closed_end - scan.closed_start, scan.closed_count};
+    worst.arc = {
+        true, 0, 0, scan.closed_start, scan.closed_end - scan.closed_start, scan.closed_count};
     if (scan.has_open) {
         const std::int64_t length = two_n - (scan.open_end - scan.open_start);
         const std::int64_t excess = four_n * m - scan.width * two_n - scan.best_open;
@@ -113,7 +115,8 @@ BandWorst worst_open(const ArcScan& scan, std::int64_t four_n, std::int64_t two_
     worst.arc = {false, 0, 0, scan.closed_end, length, m - scan.closed_count};
     if (scan.has_open && -scan.best_open > worst.excess) {
         worst.excess = -scan.best_open;
-        worst.arc = {false, 0, 0, scan.open_start, scan.open_end - scan.open_start, scan.open_count};
+        worst.arc = {false,          0, 0, scan.open_start, scan.open_end - scan.open_start,
+                     scan.open_count};
     }
     return worst;
 }
@@ -184,7 +187,8 @@ std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector) 
 Discrepancy discrepancy(int n, int tau) {
     detail::require_valid(n, tau);
     Discrepancy result{n, tau, 0, {}};
-    result.scaled = detail::evaluate(n, tau, std::numeric_limits<std::int64_t>::max(), &result.worst);
+    result.scaled =
+        detail::evaluate(n, tau, std::numeric_limits<std::int64_t>::max(), &result.worst);
     return result;
 }
 

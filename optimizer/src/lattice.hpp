@@ -11,8 +11,8 @@ namespace spiral::detail {
 
 inline void require_valid(int n, int tau) {
     if (n < 1 || n > kMaxTaps)
-        throw std::invalid_argument("tap count n = " + std::to_string(n) +
-                                    " is outside [1, " + std::to_string(kMaxTaps) + "]");
+        throw std::invalid_argument("tap count n = " + std::to_string(n) + " is outside [1, " +
+                                    std::to_string(kMaxTaps) + "]");
     if (tau < 1)
         throw std::invalid_argument("turns tau = " + std::to_string(tau) + " must be at least 1");
 }
@@ -25,7 +25,9 @@ struct SpiralLattice {
     std::int64_t tau;  // reduced modulo 2n
 
     SpiralLattice(int taps, int turns)
-        : n(taps), two_n(2 * std::int64_t{taps}), tau(std::int64_t{turns} % (2 * std::int64_t{taps})) {}
+        : n(taps),
+          two_n(2 * std::int64_t{taps}),
+          tau(std::int64_t{turns} % (2 * std::int64_t{taps})) {}
 
     std::int64_t radial(std::int64_t i) const { return 2 * i + 1; }
     std::int64_t angular(std::int64_t i) const { return ((2 * i + 1) * tau) % two_n; }

@@ -107,8 +107,9 @@ SearchResult search(int n, const SearchOptions& options) {
 std::vector<SearchResult> search_range(int min_n, int max_n, const SearchOptions& options,
                                        const std::function<void(int, int)>& progress) {
     if (min_n < 1 || max_n > kMaxTaps || min_n > max_n)
-        throw std::invalid_argument("tap range [" + std::to_string(min_n) + ", " + std::to_string(max_n) +
-                                    "] is not within [1, " + std::to_string(kMaxTaps) + "]");
+        throw std::invalid_argument("tap range [" + std::to_string(min_n) + ", " +
+                                    std::to_string(max_n) + "] is not within [1, " +
+                                    std::to_string(kMaxTaps) + "]");
     const int total = max_n - min_n + 1;
     std::vector<SearchResult> results(static_cast<std::size_t>(total));
     // Largest n first: the costly searches start early and small ones fill the gaps.

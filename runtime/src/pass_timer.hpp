@@ -12,33 +12,33 @@
 namespace deepgi {
 
 class PassTimer {
- public:
-  explicit PassTimer(bool use_cpu_clock) : use_cpu_clock_(use_cpu_clock) {}
-  void begin_frame();
-  void begin(const std::string& pass);
-  void end();
-  // Collects the query results of this frame (waits for the GPU).
-  void end_frame();
-  const std::vector<PassTiming>& timings() const { return timings_; }
-  bool uses_cpu_clock() const { return use_cpu_clock_; }
+public:
+    explicit PassTimer(bool use_cpu_clock) : use_cpu_clock_(use_cpu_clock) {}
+    void begin_frame();
+    void begin(const std::string& pass);
+    void end();
+    // Collects the query results of this frame (waits for the GPU).
+    void end_frame();
+    const std::vector<PassTiming>& timings() const { return timings_; }
+    bool uses_cpu_clock() const { return use_cpu_clock_; }
 
- private:
-  bool use_cpu_clock_;
-  std::vector<PassTiming> timings_;
-  std::vector<gl::Query> queries_;
-  std::chrono::steady_clock::time_point started_;
+private:
+    bool use_cpu_clock_;
+    std::vector<PassTiming> timings_;
+    std::vector<gl::Query> queries_;
+    std::chrono::steady_clock::time_point started_;
 };
 
 // Times one pass for the duration of a scope.
 class ScopedPass {
- public:
-  ScopedPass(PassTimer& timer, const std::string& pass) : timer_(timer) { timer_.begin(pass); }
-  ~ScopedPass() { timer_.end(); }
-  ScopedPass(const ScopedPass&) = delete;
-  ScopedPass& operator=(const ScopedPass&) = delete;
+public:
+    ScopedPass(PassTimer& timer, const std::string& pass) : timer_(timer) { timer_.begin(pass); }
+    ~ScopedPass() { timer_.end(); }
+    ScopedPass(const ScopedPass&) = delete;
+    ScopedPass& operator=(const ScopedPass&) = delete;
 
- private:
-  PassTimer& timer_;
+private:
+    PassTimer& timer_;
 };
 
 }  // namespace deepgi

@@ -23,302 +23,372 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string one_line(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  std::replace(text.begin(), text.end(), '\r', ' ');
-  while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text;
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::replace(text.begin(), text.end(), '\r', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
 }
 
 class GltfReader {
- public:
-  GltfReader(const tinygltf::Model& model, const fs::path& path) : model_(model), path_(path) {}
+public:
+    GltfReader(const tinygltf::Model& model, const fs::path& path) : model_(model), path_(path) {}
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(fmt::format("glTF file '{}': {}", path_.string(), what));
-  }
-
-  // Returns component `c` of element `i` as float, honouring byteStride and
-  // normalised integer types; every offset is bounds checked.
-  std::function<float(std::size_t, int)> accessor_reader(int accessor_index, int expected_components,
-                                                         std::size_t& count) const {
-    if (accessor_index < 0 || accessor_index >= int(model_.accessors.size())) fail("accessor index out of range");
-    const auto& accessor = model_.accessors[std::size_t(accessor_index)];
-    const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
-    if (components != expected_components) fail(fmt::format("accessor {} has {} components, expected {}", accessor_index, components, expected_components));
-    if (accessor.bufferView < 0 || accessor.bufferView >= int(model_.bufferViews.size())) fail(fmt::format("accessor {} has no valid buffer view", accessor_index));
-    const auto& view = model_.bufferViews[std::size_t(accessor.bufferView)];
-    if (view.buffer < 0 || view.buffer >= int(model_.buffers.size())) fail("buffer view refers to a missing buffer");
-    const auto& buffer = model_.buffers[std::size_t(view.buffer)];
-    const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
-    if (component_size <= 0) fail(fmt::format("accessor {} has an unknown component type", accessor_index));
-    const std::size_t element_size = std::size_t(component_size * components);
-    const std::size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
-    count = accessor.count;
-    const std::size_t begin = view.byteOffset + accessor.byteOffset;
-    if (count > 0) {
-      const std::size_t end = begin + (count - 1) * stride + element_size;
-      if (end > view.byteOffset + view.byteLength || end > buffer.data.size()) {
-        fail(fmt::format("accessor {} reads past the end of its buffer", accessor_index));
-      }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(fmt::format("glTF file '{}': {}", path_.string(), what));
     }
-    const std::uint8_t* data = buffer.data.data() + begin;
-    const int type = accessor.componentType;
-    const bool normalized = accessor.normalized;
-    return [=](std::size_t i, int c) -> float {
-      const std::uint8_t* p = data + i * stride + std::size_t(c * component_size);
-      switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(*p) / 255.0f : float(*p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? float(v) / 65535.0f : float(v); }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); return float(v); }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v); }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v); }
-        default: return 0.0f;
-      }
-    };
-  }
 
-  std::vector<std::uint32_t> read_indices(int accessor_index) const {
-    const auto& accessor = model_.accessors.at(std::size_t(accessor_index));
-    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      fail("indices must be unsigned integers");
+    // Returns component `c` of element `i` as float, honouring byteStride and
+    // normalised integer types; every offset is bounds checked.
+    std::function<float(std::size_t, int)> accessor_reader(int accessor_index,
+                                                           int expected_components,
+                                                           std::size_t& count) const {
+        if (accessor_index < 0 || accessor_index >= int(model_.accessors.size()))
+            fail("accessor index out of range");
+        const auto& accessor = model_.accessors[std::size_t(accessor_index)];
+        const int components =
+            tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
+        if (components != expected_components)
+            fail(fmt::format("accessor {} has {} components, expected {}", accessor_index,
+                             components, expected_components));
+        if (accessor.bufferView < 0 || accessor.bufferView >= int(model_.bufferViews.size()))
+            fail(fmt::format("accessor {} has no valid buffer view", accessor_index));
+        const auto& view = model_.bufferViews[std::size_t(accessor.bufferView)];
+        if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()))
+            fail("buffer view refers to a missing buffer");
+        const auto& buffer = model_.buffers[std::size_t(view.buffer)];
+        const int component_size =
+            tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
+        if (component_size <= 0)
+            fail(fmt::format("accessor {} has an unknown component type", accessor_index));
+        const std::size_t element_size = std::size_t(component_size * components);
+        const std::size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
+        count = accessor.count;
+        const std::size_t begin = view.byteOffset + accessor.byteOffset;
+        if (count > 0) {
+            const std::size_t end = begin + (count - 1) * stride + element_size;
+            if (end > view.byteOffset + view.byteLength || end > buffer.data.size()) {
+                fail(fmt::format("accessor {} reads past the end of its buffer", accessor_index));
+            }
+        }
+        const std::uint8_t* data = buffer.data.data() + begin;
+        const int type = accessor.componentType;
+        const bool normalized = accessor.normalized;
+        return [=](std::size_t i, int c) -> float {
+            const std::uint8_t* p = data + i * stride + std::size_t(c * component_size);
+            switch (type) {
+                case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+                    float v;
+                    std::memcpy(&v, p, 4);
+                    return v;
+                }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    return normalized ? float(*p) / 255.0f : float(*p);
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                    std::uint16_t v;
+                    std::memcpy(&v, p, 2);
+                    return normalized ? float(v) / 65535.0f : float(v);
+                }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+                    std::uint32_t v;
+                    std::memcpy(&v, p, 4);
+                    return float(v);
+                }
+                case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                    std::int8_t v;
+                    std::memcpy(&v, p, 1);
+                    return normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v);
+                }
+                case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                    std::int16_t v;
+                    std::memcpy(&v, p, 2);
+                    return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
+                }
+                default:
+                    return 0.0f;
+            }
+        };
     }
-    std::size_t count = 0;
-    auto read = accessor_reader(accessor_index, 1, count);
-    std::vector<std::uint32_t> indices(count);
-    for (std::size_t i = 0; i < count; ++i) indices[i] = static_cast<std::uint32_t>(read(i, 0));
-    return indices;
-  }
 
-  const tinygltf::Model& model_;
-  fs::path path_;
+    std::vector<std::uint32_t> read_indices(int accessor_index) const {
+        const auto& accessor = model_.accessors.at(std::size_t(accessor_index));
+        if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+            fail("indices must be unsigned integers");
+        }
+        std::size_t count = 0;
+        auto read = accessor_reader(accessor_index, 1, count);
+        std::vector<std::uint32_t> indices(count);
+        for (std::size_t i = 0; i < count; ++i) indices[i] = static_cast<std::uint32_t>(read(i, 0));
+        return indices;
+    }
+
+    const tinygltf::Model& model_;
+    fs::path path_;
 };
 
 glm::mat4 node_transform(const tinygltf::Node& node) {
-  if (node.matrix.size() == 16) {
-    glm::mat4 matrix;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(matrix)[i] = float(node.matrix[std::size_t(i)]);
-    return matrix;
-  }
-  glm::mat4 transform(1.0f);
-  if (node.translation.size() == 3) {
-    transform = glm::translate(transform, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
-  }
-  if (node.rotation.size() == 4) {
-    glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
-    transform *= glm::mat4_cast(rotation);
-  }
-  if (node.scale.size() == 3) transform = glm::scale(transform, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
-  return transform;
+    if (node.matrix.size() == 16) {
+        glm::mat4 matrix;
+        for (int i = 0; i < 16; ++i) glm::value_ptr(matrix)[i] = float(node.matrix[std::size_t(i)]);
+        return matrix;
+    }
+    glm::mat4 transform(1.0f);
+    if (node.translation.size() == 3) {
+        transform = glm::translate(
+            transform, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    }
+    if (node.rotation.size() == 4) {
+        glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]),
+                           float(node.rotation[1]), float(node.rotation[2]));
+        transform *= glm::mat4_cast(rotation);
+    }
+    if (node.scale.size() == 3)
+        transform = glm::scale(transform, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+    return transform;
 }
 
 TextureImage convert_image(const tinygltf::Image& image, const GltfReader& reader) {
-  if (image.bits != 8 || image.width <= 0 || image.height <= 0 || image.component < 1 || image.component > 4) {
-    reader.fail(fmt::format("image '{}' is not an 8-bit image (only 8-bit base colour textures are supported)", image.uri));
-  }
-  TextureImage texture;
-  texture.width = image.width;
-  texture.height = image.height;
-  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
-  if (image.image.size() < pixels * std::size_t(image.component)) reader.fail("image data is truncated");
-  texture.rgba8.resize(pixels * 4);
-  for (std::size_t i = 0; i < pixels; ++i) {
-    const std::uint8_t* source = image.image.data() + i * std::size_t(image.component);
-    std::uint8_t* target = texture.rgba8.data() + i * 4;
-    if (image.component <= 2) {
-      target[0] = target[1] = target[2] = source[0];
-    } else {
-      target[0] = source[0];
-      target[1] = source[1];
-      target[2] = source[2];
+    if (image.bits != 8 || image.width <= 0 || image.height <= 0 || image.component < 1 ||
+        image.component > 4) {
+        reader.fail(fmt::format(
+            "image '{}' is not an 8-bit image (only 8-bit base colour textures are supported)",
+            image.uri));
     }
-    target[3] = 255;
-  }
-  return texture;
+    TextureImage texture;
+    texture.width = image.width;
+    texture.height = image.height;
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    if (image.image.size() < pixels * std::size_t(image.component))
+        reader.fail("image data is truncated");
+    texture.rgba8.resize(pixels * 4);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint8_t* source = image.image.data() + i * std::size_t(image.component);
+        std::uint8_t* target = texture.rgba8.data() + i * 4;
+        if (image.component <= 2) {
+            target[0] = target[1] = target[2] = source[0];
+        } else {
+            target[0] = source[0];
+            target[1] = source[1];
+            target[2] = source[2];
+        }
+        target[3] = 255;
+    }
+    return texture;
 }
 
 }  // namespace
 
 Scene load_gltf_scene(const fs::path& path) {
-  if (!fs::exists(path)) throw InputError(fmt::format("scene file '{}' does not exist", path.string()));
-  if (!fs::is_regular_file(path)) throw InputError(fmt::format("scene file '{}' is not a regular file", path.string()));
-  const std::string extension = path.extension().string();
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::string error;
-  std::string warning;
-  bool loaded = false;
-  if (extension == ".gltf") {
-    loaded = loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
-  } else if (extension == ".glb") {
-    loaded = loader.LoadBinaryFromFile(&model, &error, &warning, path.string());
-  } else {
-    throw InputError(fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
-  }
-  if (!loaded) {
-    throw InputError(fmt::format("cannot load glTF file '{}': {}", path.string(),
-                                 one_line(error.empty() ? "unknown error" : error)));
-  }
-  GltfReader reader(model, path);
-
-  Scene scene;
-  scene.name = path.stem().string();
-  // Material -1 (none) becomes the glTF default material, appended last.
-  std::map<int, std::vector<std::uint32_t>> indices_by_material;
-  std::map<int, int> texture_of_image;
-
-  auto add_primitive = [&](const tinygltf::Primitive& primitive, const glm::mat4& transform) {
-    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
-      reader.fail(fmt::format("primitive mode {} is not supported (only triangles)", primitive.mode));
-    }
-    const auto position_attribute = primitive.attributes.find("POSITION");
-    if (position_attribute == primitive.attributes.end()) reader.fail("a primitive has no POSITION attribute");
-    std::size_t vertex_count = 0;
-    auto read_position = reader.accessor_reader(position_attribute->second, 3, vertex_count);
-    std::function<float(std::size_t, int)> read_normal;
-    std::function<float(std::size_t, int)> read_uv;
-    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-      std::size_t count = 0;
-      read_normal = reader.accessor_reader(it->second, 3, count);
-      if (count != vertex_count) reader.fail("NORMAL and POSITION counts differ");
-    }
-    if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
-      std::size_t count = 0;
-      read_uv = reader.accessor_reader(it->second, 2, count);
-      if (count != vertex_count) reader.fail("TEXCOORD_0 and POSITION counts differ");
-    }
-    std::vector<std::uint32_t> local_indices;
-    if (primitive.indices >= 0) {
-      local_indices = reader.read_indices(primitive.indices);
+    if (!fs::exists(path))
+        throw InputError(fmt::format("scene file '{}' does not exist", path.string()));
+    if (!fs::is_regular_file(path))
+        throw InputError(fmt::format("scene file '{}' is not a regular file", path.string()));
+    const std::string extension = path.extension().string();
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string error;
+    std::string warning;
+    bool loaded = false;
+    if (extension == ".gltf") {
+        loaded = loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+    } else if (extension == ".glb") {
+        loaded = loader.LoadBinaryFromFile(&model, &error, &warning, path.string());
     } else {
-      local_indices.resize(vertex_count);
-      for (std::size_t i = 0; i < vertex_count; ++i) local_indices[i] = static_cast<std::uint32_t>(i);
+        throw InputError(
+            fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
     }
-    if (local_indices.size() % 3 != 0) reader.fail("triangle index count is not a multiple of 3");
-    for (auto index : local_indices) {
-      if (index >= vertex_count) reader.fail("an index refers past the end of the vertices");
+    if (!loaded) {
+        throw InputError(fmt::format("cannot load glTF file '{}': {}", path.string(),
+                                     one_line(error.empty() ? "unknown error" : error)));
     }
-    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
-    const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
-    // Without normals every triangle gets its own flat-shaded vertices.
-    const bool flat = !read_normal;
-    auto& target = indices_by_material[primitive.material];
-    auto emit_vertex = [&](std::uint32_t i, glm::vec3 flat_normal) {
-      Vertex vertex;
-      vertex.position = glm::vec3(transform * glm::vec4(read_position(i, 0), read_position(i, 1), read_position(i, 2), 1.0f));
-      vertex.normal = flat ? flat_normal
-                           : glm::normalize(normal_matrix * glm::vec3(read_normal(i, 0), read_normal(i, 1), read_normal(i, 2)));
-      if (!std::isfinite(vertex.normal.x)) vertex.normal = flat_normal;
-      vertex.uv = read_uv ? glm::vec2(read_uv(i, 0), read_uv(i, 1)) : glm::vec2(0.0f);
-      if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) || !std::isfinite(vertex.position.z)) {
-        reader.fail("a vertex position is not finite");
-      }
-      scene.vertices.push_back(vertex);
-      target.push_back(static_cast<std::uint32_t>(scene.vertices.size() - 1));
+    GltfReader reader(model, path);
+
+    Scene scene;
+    scene.name = path.stem().string();
+    // Material -1 (none) becomes the glTF default material, appended last.
+    std::map<int, std::vector<std::uint32_t>> indices_by_material;
+    std::map<int, int> texture_of_image;
+
+    auto add_primitive = [&](const tinygltf::Primitive& primitive, const glm::mat4& transform) {
+        if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
+            reader.fail(
+                fmt::format("primitive mode {} is not supported (only triangles)", primitive.mode));
+        }
+        const auto position_attribute = primitive.attributes.find("POSITION");
+        if (position_attribute == primitive.attributes.end())
+            reader.fail("a primitive has no POSITION attribute");
+        std::size_t vertex_count = 0;
+        auto read_position = reader.accessor_reader(position_attribute->second, 3, vertex_count);
+        std::function<float(std::size_t, int)> read_normal;
+        std::function<float(std::size_t, int)> read_uv;
+        if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+            std::size_t count = 0;
+            read_normal = reader.accessor_reader(it->second, 3, count);
+            if (count != vertex_count) reader.fail("NORMAL and POSITION counts differ");
+        }
+        if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
+            std::size_t count = 0;
+            read_uv = reader.accessor_reader(it->second, 2, count);
+            if (count != vertex_count) reader.fail("TEXCOORD_0 and POSITION counts differ");
+        }
+        std::vector<std::uint32_t> local_indices;
+        if (primitive.indices >= 0) {
+            local_indices = reader.read_indices(primitive.indices);
+        } else {
+            local_indices.resize(vertex_count);
+            for (std::size_t i = 0; i < vertex_count; ++i)
+                local_indices[i] = static_cast<std::uint32_t>(i);
+        }
+        if (local_indices.size() % 3 != 0)
+            reader.fail("triangle index count is not a multiple of 3");
+        for (auto index : local_indices) {
+            if (index >= vertex_count) reader.fail("an index refers past the end of the vertices");
+        }
+        const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+        const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
+        // Without normals every triangle gets its own flat-shaded vertices.
+        const bool flat = !read_normal;
+        auto& target = indices_by_material[primitive.material];
+        auto emit_vertex = [&](std::uint32_t i, glm::vec3 flat_normal) {
+            Vertex vertex;
+            vertex.position =
+                glm::vec3(transform * glm::vec4(read_position(i, 0), read_position(i, 1),
+                                                read_position(i, 2), 1.0f));
+            vertex.normal =
+                flat
+                    ? flat_normal
+                    : glm::normalize(normal_matrix * glm::vec3(read_normal(i, 0), read_normal(i, 1),
+                                                               read_normal(i, 2)));
+            if (!std::isfinite(vertex.normal.x)) vertex.normal = flat_normal;
+            vertex.uv = read_uv ? glm::vec2(read_uv(i, 0), read_uv(i, 1)) : glm::vec2(0.0f);
+            if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
+                !std::isfinite(vertex.position.z)) {
+                reader.fail("a vertex position is not finite");
+            }
+            scene.vertices.push_back(vertex);
+            target.push_back(static_cast<std::uint32_t>(scene.vertices.size() - 1));
+        };
+        for (std::size_t t = 0; t < local_indices.size(); t += 3) {
+            std::uint32_t a = local_indices[t];
+            std::uint32_t b = local_indices[t + 1];
+            std::uint32_t c = local_indices[t + 2];
+            if (mirrored) std::swap(b, c);
+            auto world = [&](std::uint32_t i) {
+                return glm::vec3(transform * glm::vec4(read_position(i, 0), read_position(i, 1),
+                                                       read_position(i, 2), 1.0f));
+            };
+            glm::vec3 face = glm::cross(world(b) - world(a), world(c) - world(a));
+            const float length = glm::length(face);
+            const glm::vec3 flat_normal = length > 0.0f ? face / length : glm::vec3(0, 1, 0);
+            emit_vertex(a, flat_normal);
+            emit_vertex(b, flat_normal);
+            emit_vertex(c, flat_normal);
+        }
     };
-    for (std::size_t t = 0; t < local_indices.size(); t += 3) {
-      std::uint32_t a = local_indices[t];
-      std::uint32_t b = local_indices[t + 1];
-      std::uint32_t c = local_indices[t + 2];
-      if (mirrored) std::swap(b, c);
-      auto world = [&](std::uint32_t i) {
-        return glm::vec3(transform * glm::vec4(read_position(i, 0), read_position(i, 1), read_position(i, 2), 1.0f));
-      };
-      glm::vec3 face = glm::cross(world(b) - world(a), world(c) - world(a));
-      const float length = glm::length(face);
-      const glm::vec3 flat_normal = length > 0.0f ? face / length : glm::vec3(0, 1, 0);
-      emit_vertex(a, flat_normal);
-      emit_vertex(b, flat_normal);
-      emit_vertex(c, flat_normal);
-    }
-  };
 
-  std::function<void(int, const glm::mat4&, int)> visit = [&](int node_index, const glm::mat4& parent, int depth) {
-    if (node_index < 0 || node_index >= int(model.nodes.size())) reader.fail("node index out of range");
-    if (depth > 64) reader.fail("node hierarchy is too deep (cycle?)");
-    const auto& node = model.nodes[std::size_t(node_index)];
-    const glm::mat4 transform = parent * node_transform(node);
-    if (node.mesh >= 0) {
-      if (node.mesh >= int(model.meshes.size())) reader.fail("mesh index out of range");
-      for (const auto& primitive : model.meshes[std::size_t(node.mesh)].primitives) add_primitive(primitive, transform);
-    }
-    for (int child : node.children) visit(child, transform, depth + 1);
-  };
+    std::function<void(int, const glm::mat4&, int)> visit =
+        [&](int node_index, const glm::mat4& parent, int depth) {
+            if (node_index < 0 || node_index >= int(model.nodes.size()))
+                reader.fail("node index out of range");
+            if (depth > 64) reader.fail("node hierarchy is too deep (cycle?)");
+            const auto& node = model.nodes[std::size_t(node_index)];
+            const glm::mat4 transform = parent * node_transform(node);
+            if (node.mesh >= 0) {
+                if (node.mesh >= int(model.meshes.size())) reader.fail("mesh index out of range");
+                for (const auto& primitive : model.meshes[std::size_t(node.mesh)].primitives)
+                    add_primitive(primitive, transform);
+            }
+            for (int child : node.children) visit(child, transform, depth + 1);
+        };
 
-  if (!model.scenes.empty()) {
-    const int scene_index = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size()) ? model.defaultScene : 0;
-    for (int node : model.scenes[std::size_t(scene_index)].nodes) visit(node, glm::mat4(1.0f), 0);
-  } else {
-    for (std::size_t i = 0; i < model.meshes.size(); ++i) {
-      for (const auto& primitive : model.meshes[i].primitives) add_primitive(primitive, glm::mat4(1.0f));
+    if (!model.scenes.empty()) {
+        const int scene_index =
+            model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size())
+                ? model.defaultScene
+                : 0;
+        for (int node : model.scenes[std::size_t(scene_index)].nodes)
+            visit(node, glm::mat4(1.0f), 0);
+    } else {
+        for (std::size_t i = 0; i < model.meshes.size(); ++i) {
+            for (const auto& primitive : model.meshes[i].primitives)
+                add_primitive(primitive, glm::mat4(1.0f));
+        }
     }
-  }
-  if (scene.vertices.empty()) reader.fail("contains no triangles");
+    if (scene.vertices.empty()) reader.fail("contains no triangles");
 
-  for (auto& [material_index, indices] : indices_by_material) {
-    Material material;
-    if (material_index >= 0) {
-      if (material_index >= int(model.materials.size())) reader.fail("material index out of range");
-      const auto& source = model.materials[std::size_t(material_index)];
-      const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
-      if (factor.size() == 4) material.base_colour = glm::vec4(factor[0], factor[1], factor[2], factor[3]);
-      if (source.emissiveFactor.size() == 3) {
-        material.emissive = glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]);
-      }
-      const int texture_index = source.pbrMetallicRoughness.baseColorTexture.index;
-      if (texture_index >= 0) {
-        if (texture_index >= int(model.textures.size())) reader.fail("texture index out of range");
-        const int image_index = model.textures[std::size_t(texture_index)].source;
-        if (image_index < 0 || image_index >= int(model.images.size())) reader.fail("texture has no valid image");
-        auto [it, inserted] = texture_of_image.try_emplace(image_index, int(scene.textures.size()));
-        if (inserted) scene.textures.push_back(convert_image(model.images[std::size_t(image_index)], reader));
-        material.base_colour_texture = it->second;
-      }
+    for (auto& [material_index, indices] : indices_by_material) {
+        Material material;
+        if (material_index >= 0) {
+            if (material_index >= int(model.materials.size()))
+                reader.fail("material index out of range");
+            const auto& source = model.materials[std::size_t(material_index)];
+            const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
+            if (factor.size() == 4)
+                material.base_colour = glm::vec4(factor[0], factor[1], factor[2], factor[3]);
+            if (source.emissiveFactor.size() == 3) {
+                material.emissive = glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1],
+                                              source.emissiveFactor[2]);
+            }
+            const int texture_index = source.pbrMetallicRoughness.baseColorTexture.index;
+            if (texture_index >= 0) {
+                if (texture_index >= int(model.textures.size()))
+                    reader.fail("texture index out of range");
+                const int image_index = model.textures[std::size_t(texture_index)].source;
+                if (image_index < 0 || image_index >= int(model.images.size()))
+                    reader.fail("texture has no valid image");
+                auto [it, inserted] =
+                    texture_of_image.try_emplace(image_index, int(scene.textures.size()));
+                if (inserted)
+                    scene.textures.push_back(
+                        convert_image(model.images[std::size_t(image_index)], reader));
+                material.base_colour_texture = it->second;
+            }
+        }
+        scene.materials.push_back(material);
+        DrawBatch batch;
+        batch.first_index = static_cast<std::uint32_t>(scene.indices.size());
+        batch.index_count = static_cast<std::uint32_t>(indices.size());
+        batch.material = int(scene.materials.size()) - 1;
+        scene.indices.insert(scene.indices.end(), indices.begin(), indices.end());
+        scene.batches.push_back(batch);
     }
-    scene.materials.push_back(material);
-    DrawBatch batch;
-    batch.first_index = static_cast<std::uint32_t>(scene.indices.size());
-    batch.index_count = static_cast<std::uint32_t>(indices.size());
-    batch.material = int(scene.materials.size()) - 1;
-    scene.indices.insert(scene.indices.end(), indices.begin(), indices.end());
-    scene.batches.push_back(batch);
-  }
 
-  scene.bounds = compute_bounds(scene.vertices);
-  const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
-  const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
-  // Default view: from +z, a little above, far enough to see the bounding sphere.
-  Camera camera;
-  camera.vertical_fov = glm::radians(50.0f);
-  camera.near_plane = std::max(radius * 1e-3f, 1e-4f);
-  const float distance = radius / std::sin(camera.vertical_fov * 0.5f);
-  camera.pitch = glm::radians(-15.0f);
-  camera.position = centre - camera_forward(camera) * distance;
-  scene.default_camera = camera;
-  scene.camera_path.frames_per_key = 30;
-  for (int key = 0; key < 4; ++key) {  // orbit around the centre
-    Camera orbit = camera;
-    orbit.yaw = glm::radians(30.0f * float(key) - 45.0f);
-    orbit.position = centre - camera_forward(orbit) * distance;
-    scene.camera_path.keys.push_back(orbit);
-  }
-  scene.key_light.kind = LightKind::directional;
-  scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-  scene.key_light.intensity = 3.0f;
-  scene.ambient = glm::vec3(0.05f);
-  scene.background = glm::vec3(0.2f, 0.22f, 0.25f);
-  return scene;
+    scene.bounds = compute_bounds(scene.vertices);
+    const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
+    const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
+    // Default view: from +z, a little above, far enough to see the bounding sphere.
+    Camera camera;
+    camera.vertical_fov = glm::radians(50.0f);
+    camera.near_plane = std::max(radius * 1e-3f, 1e-4f);
+    const float distance = radius / std::sin(camera.vertical_fov * 0.5f);
+    camera.pitch = glm::radians(-15.0f);
+    camera.position = centre - camera_forward(camera) * distance;
+    scene.default_camera = camera;
+    scene.camera_path.frames_per_key = 30;
+    for (int key = 0; key < 4; ++key) {  // orbit around the centre
+        Camera orbit = camera;
+        orbit.yaw = glm::radians(30.0f * float(key) - 45.0f);
+        orbit.position = centre - camera_forward(orbit) * distance;
+        scene.camera_path.keys.push_back(orbit);
+    }
+    scene.key_light.kind = LightKind::directional;
+    scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+    scene.key_light.intensity = 3.0f;
+    scene.ambient = glm::vec3(0.05f);
+    scene.background = glm::vec3(0.2f, 0.22f, 0.25f);
+    return scene;
 }
 
 Scene load_scene(std::string_view name_or_path) {
-  const fs::path path(name_or_path);
-  const std::string extension = path.extension().string();
-  if (extension == ".gltf" || extension == ".glb") return load_gltf_scene(path);
-  if (extension.empty()) return make_builtin_scene(name_or_path);
-  if (fs::exists(path)) throw InputError(fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
-  return make_builtin_scene(name_or_path);
+    const fs::path path(name_or_path);
+    const std::string extension = path.extension().string();
+    if (extension == ".gltf" || extension == ".glb") return load_gltf_scene(path);
+    if (extension.empty()) return make_builtin_scene(name_or_path);
+    if (fs::exists(path))
+        throw InputError(
+            fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
+    return make_builtin_scene(name_or_path);
 }
 
 }  // namespace deepgi

@@ -7,59 +7,70 @@
 namespace deepgi {
 
 SceneGpu upload_scene(const Scene& scene) {
-  SceneGpu gpu;
-  gpu.vertices = gl::create_buffer();
-  gpu.indices = gl::create_buffer();
-  glNamedBufferStorage(gpu.vertices.get(), GLsizeiptr(scene.vertices.size() * sizeof(Vertex)), scene.vertices.data(), 0);
-  glNamedBufferStorage(gpu.indices.get(), GLsizeiptr(scene.indices.size() * sizeof(std::uint32_t)), scene.indices.data(), 0);
-  gpu.vertex_array = gl::create_vertex_array();
-  const GLuint vao = gpu.vertex_array.get();
-  glVertexArrayVertexBuffer(vao, 0, gpu.vertices.get(), 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, gpu.indices.get());
-  const struct {
-    GLuint location;
-    GLint size;
-    GLuint offset;
-  } attributes[] = {{DEEPGI_ATTRIBUTE_POSITION, 3, offsetof(Vertex, position)},
-                    {DEEPGI_ATTRIBUTE_NORMAL, 3, offsetof(Vertex, normal)},
-                    {DEEPGI_ATTRIBUTE_UV, 2, offsetof(Vertex, uv)}};
-  for (const auto& attribute : attributes) {
-    glEnableVertexArrayAttrib(vao, attribute.location);
-    glVertexArrayAttribFormat(vao, attribute.location, attribute.size, GL_FLOAT, GL_FALSE, attribute.offset);
-    glVertexArrayAttribBinding(vao, attribute.location, 0);
-  }
-  gpu.batches = scene.batches;
-  gpu.materials = scene.materials;
-  for (const auto& image : scene.textures) {
-    gl::Texture texture = gl::create_texture(GL_TEXTURE_2D);
-    int levels = 1;
-    while ((std::max(image.width, image.height) >> levels) > 0) ++levels;
-    glTextureStorage2D(texture.get(), levels, GL_SRGB8_ALPHA8, image.width, image.height);
-    // glTF rows run top to bottom with v = 0 at the top, matching GL's first row at v = 0.
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba8.data());
-    glGenerateTextureMipmap(texture.get());
-    glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gpu.textures.push_back(std::move(texture));
-  }
-  return gpu;
+    SceneGpu gpu;
+    gpu.vertices = gl::create_buffer();
+    gpu.indices = gl::create_buffer();
+    glNamedBufferStorage(gpu.vertices.get(), GLsizeiptr(scene.vertices.size() * sizeof(Vertex)),
+                         scene.vertices.data(), 0);
+    glNamedBufferStorage(gpu.indices.get(),
+                         GLsizeiptr(scene.indices.size() * sizeof(std::uint32_t)),
+                         scene.indices.data(), 0);
+    gpu.vertex_array = gl::create_vertex_array();
+    const GLuint vao = gpu.vertex_array.get();
+    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.get(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, gpu.indices.get());
+    const struct {
+        GLuint location;
+        GLint size;
+        GLuint offset;
+    } attributes[] = {{DEEPGI_ATTRIBUTE_POSITION, 3, offsetof(Vertex, position)},
+                      {DEEPGI_ATTRIBUTE_NORMAL, 3, offsetof(Vertex, normal)},
+                      {DEEPGI_ATTRIBUTE_UV, 2, offsetof(Vertex, uv)}};
+    for (const auto& attribute : attributes) {
+        glEnableVertexArrayAttrib(vao, attribute.location);
+        glVertexArrayAttribFormat(vao, attribute.location, attribute.size, GL_FLOAT, GL_FALSE,
+                                  attribute.offset);
+        glVertexArrayAttribBinding(vao, attribute.location, 0);
+    }
+    gpu.batches = scene.batches;
+    gpu.materials = scene.materials;
+    for (const auto& image : scene.textures) {
+        gl::Texture texture = gl::create_texture(GL_TEXTURE_2D);
+        int levels = 1;
+        while ((std::max(image.width, image.height) >> levels) > 0) ++levels;
+        glTextureStorage2D(texture.get(), levels, GL_SRGB8_ALPHA8, image.width, image.height);
+        // glTF rows run top to bottom with v = 0 at the top, matching GL's first row at v = 0.
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA,
+                            GL_UNSIGNED_BYTE, image.rgba8.data());
+        glGenerateTextureMipmap(texture.get());
+        glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gpu.textures.push_back(std::move(texture));
+    }
+    return gpu;
 }
 
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
-  glBindVertexArray(scene.vertex_array.get());
-  for (const auto& batch : scene.batches) {
-    if (program_for_materials != 0) {
-      const Material& material = scene.materials[std::size_t(batch.material)];
-      glProgramUniform4fv(program_for_materials, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1, &material.base_colour.x);
-      glProgramUniform3fv(program_for_materials, DEEPGI_UNIFORM_EMISSIVE_FACTOR, 1, &material.emissive.x);
-      const bool textured = material.base_colour_texture >= 0;
-      glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE, textured ? 1 : 0);
-      if (textured) glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR, scene.textures[std::size_t(material.base_colour_texture)].get());
+    glBindVertexArray(scene.vertex_array.get());
+    for (const auto& batch : scene.batches) {
+        if (program_for_materials != 0) {
+            const Material& material = scene.materials[std::size_t(batch.material)];
+            glProgramUniform4fv(program_for_materials, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
+                                &material.base_colour.x);
+            glProgramUniform3fv(program_for_materials, DEEPGI_UNIFORM_EMISSIVE_FACTOR, 1,
+                                &material.emissive.x);
+            const bool textured = material.base_colour_texture >= 0;
+            glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE,
+                               textured ? 1 : 0);
+            if (textured)
+                glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
+                                  scene.textures[std::size_t(material.base_colour_texture)].get());
+        }
+        glDrawElements(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) *
+                                                     sizeof(std::uint32_t)));
     }
-    glDrawElements(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) * sizeof(std::uint32_t)));
-  }
 }
 
 }  // namespace deepgi

@@ -6,12 +6,12 @@
 namespace deepgi {
 
 struct SceneGpu {
-  gl::VertexArray vertex_array;
-  gl::Buffer vertices;
-  gl::Buffer indices;
-  std::vector<DrawBatch> batches;
-  std::vector<Material> materials;
-  std::vector<gl::Texture> textures;
+    gl::VertexArray vertex_array;
+    gl::Buffer vertices;
+    gl::Buffer indices;
+    std::vector<DrawBatch> batches;
+    std::vector<Material> materials;
+    std::vector<gl::Texture> textures;
 };
 
 SceneGpu upload_scene(const Scene& scene);

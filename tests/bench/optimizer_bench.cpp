@@ -34,7 +34,8 @@ Sample measure_once(const std::function<void()>& work) {
     const double cpu0 = process_cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
     work();
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     return {wall, process_cpu_seconds() - cpu0};
 }
 
@@ -63,20 +64,28 @@ int main(int argc, char** argv) {
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     fmt::print("hardware threads: {}\n\n", threads);
 
-    fmt::print("| table range | repetitions | median wall (s) | median CPU (s) |\n|:--|--:|--:|--:|\n");
-    for (const auto& [max_n, reps] : std::vector<std::pair<int, int>>{{99, 15}, {256, 7}, {1024, quick ? 1 : 3}}) {
+    fmt::print(
+        "| table range | repetitions | median wall (s) | median CPU (s) |\n|:--|--:|--:|--:|\n");
+    for (const auto& [max_n, reps] :
+         std::vector<std::pair<int, int>>{{99, 15}, {256, 7}, {1024, quick ? 1 : 3}}) {
         const Sample s = median([max_n = max_n] { spiral::search_range(1, max_n); }, reps);
         fmt::print("| 1..{} | {} | {:.3f} | {:.3f} |\n", max_n, reps, s.wall, s.cpu);
     }
 
-    fmt::print("\n| n | brute force, one tau (ms) | fast, one tau (ms) | ratio |\n|--:|--:|--:|--:|\n");
+    fmt::print(
+        "\n| n | brute force, one tau (ms) | fast, one tau (ms) | ratio |\n|--:|--:|--:|--:|\n");
     for (int n : {16, 32, 64, 99}) {
         const int tau = spiral::search(n).tau;
         const int reps = n >= 64 ? 3 : 9;
         const Sample brute = median([&] { spiral::discrepancy_brute_force(n, tau); }, reps);
-        const Sample fast = median([&] { for (int k = 0; k < 100; ++k) spiral::discrepancy(n, tau); }, reps);
+        const Sample fast = median(
+            [&] {
+                for (int k = 0; k < 100; ++k) spiral::discrepancy(n, tau);
+            },
+            reps);
         const double fast_ms = fast.wall * 1e3 / 100;
-        fmt::print("| {} | {:.2f} | {:.4f} | {:.0f} |\n", n, brute.wall * 1e3, fast_ms, brute.wall * 1e3 / fast_ms);
+        fmt::print("| {} | {:.2f} | {:.4f} | {:.0f} |\n", n, brute.wall * 1e3, fast_ms,
+                   brute.wall * 1e3 / fast_ms);
     }
 
     // The whole exhaustive table by brute force, as the oracle would compute it.
@@ -85,12 +94,16 @@ int main(int argc, char** argv) {
         for (int n = 1; n <= brute_max; ++n)
             for (int tau = 1; tau <= n; ++tau) spiral::discrepancy_brute_force(n, tau);
     });
-    const Sample fast_table = median([&] { spiral::search_range(1, brute_max, spiral::SearchOptions{1}); }, 9);
-    fmt::print("\ntable 1..{} on one thread: brute force {:.2f} CPU s, search {:.4f} CPU s ({:.0f}x)\n", brute_max,
-               brute_table.cpu, fast_table.cpu, brute_table.cpu / fast_table.cpu);
+    const Sample fast_table =
+        median([&] { spiral::search_range(1, brute_max, spiral::SearchOptions{1}); }, 9);
+    fmt::print(
+        "\ntable 1..{} on one thread: brute force {:.2f} CPU s, search {:.4f} CPU s ({:.0f}x)\n",
+        brute_max, brute_table.cpu, fast_table.cpu, brute_table.cpu / fast_table.cpu);
 
     const Sample big = measure_once([] { spiral::search(4096); });
-    fmt::print("search(4096): {:.2f} s wall, {:.2f} s CPU; peak resident memory of this process: {:.1f} MiB\n",
-               big.wall, big.cpu, double(peak_rss_kib()) / 1024.0);
+    fmt::print(
+        "search(4096): {:.2f} s wall, {:.2f} s CPU; peak resident memory of this process: {:.1f} "
+        "MiB\n",
+        big.wall, big.cpu, double(peak_rss_kib()) / 1024.0);
     return 0;
 }

@@ -96,9 +96,10 @@ TEST_CASE("the blur header lists every weight as a float literal", "[codegen][bl
         REQUIRE(end != std::string::npos);
         const auto start = text.rfind("    ", end);
         const std::string literal = text.substr(start + 4, end - start - 4);
-        const std::string number = literal.back() == ',' ? literal.substr(0, literal.size() - 1)
-                                                         : literal;
-        CHECK(std::strtof(number.c_str(), nullptr) == kernel.weights[static_cast<std::size_t>(k + 1)]);
+        const std::string number =
+            literal.back() == ',' ? literal.substr(0, literal.size() - 1) : literal;
+        CHECK(std::strtof(number.c_str(), nullptr) ==
+              kernel.weights[static_cast<std::size_t>(k + 1)]);
     }
     spiral::codegen::BlurKernel broken = kernel;
     broken.weights.pop_back();

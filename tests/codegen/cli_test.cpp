@@ -36,9 +36,9 @@ int entries_in(const fs::path& dir) {
 
 TEST_CASE("header and blur are deterministic and --out writes what stdout shows",
           "[codegen][cli]") {
-    const std::string arguments =
-        GENERATE(as<std::string>{}, "header --pass ao --taps 19", "header --pass radiosity --taps 64 --tau 5",
-                 "blur --radius 4", "blur --radius 6 --sigma 2.5");
+    const std::string arguments = GENERATE(as<std::string>{}, "header --pass ao --taps 19",
+                                           "header --pass radiosity --taps 64 --tau 5",
+                                           "blur --radius 4", "blur --radius 6 --sigma 2.5");
     INFO("spiralgen " << arguments);
     const auto dir = spiral::test::make_scratch_dir("codegen-cli");
     const auto first = spiralgen(arguments);
@@ -144,7 +144,8 @@ TEST_CASE("a failed write to standard output is an error, not a silent exit 0",
         WARN("no /dev/full on this system; skipped");
         return;
     }
-    const std::string arguments = GENERATE(as<std::string>{}, "header --pass ao --taps 3", "blur --radius 2");
+    const std::string arguments =
+        GENERATE(as<std::string>{}, "header --pass ao --taps 3", "blur --radius 2");
     INFO("spiralgen " << arguments << " >/dev/full");
     // The inner redirection wins over the one run_command adds around the group.
     const auto result =

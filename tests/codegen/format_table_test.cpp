@@ -54,10 +54,13 @@ TEST_CASE("parse_table_format accepts exactly the five names", "[codegen][table]
 TEST_CASE("json is one object per result with the exact fraction", "[codegen][table]") {
     const std::string expected =
         "[\n"
-        "  {\"n\":2,\"tau\":1,\"ties\":[1],\"discrepancy\":{\"num\":12,\"den\":16,\"value\":0.75}},\n"
+        "  "
+        "{\"n\":2,\"tau\":1,\"ties\":[1],\"discrepancy\":{\"num\":12,\"den\":16,\"value\":0.75}},\n"
         "  {\"n\":3,\"tau\":1,\"ties\":[1,2],\"discrepancy\":{\"num\":24,\"den\":36,"
         "\"value\":0.6666666666666666}},\n"
-        "  {\"n\":5,\"tau\":2,\"ties\":[2,3],\"discrepancy\":{\"num\":44,\"den\":100,\"value\":0.44}}\n"
+        "  "
+        "{\"n\":5,\"tau\":2,\"ties\":[2,3],\"discrepancy\":{\"num\":44,\"den\":100,\"value\":0.44}}"
+        "\n"
         "]\n";
     CHECK(format_table(sample(), TableFormat::json, kProvenance) == expected);
     // The printed value must read back as exactly K / 4n^2.
@@ -109,8 +112,7 @@ TEST_CASE("glsl is a const int array indexed by n", "[codegen][table]") {
                     ");\n") != std::string::npos);
 }
 
-TEST_CASE("long tables wrap at 16 entries with the first index of each row",
-          "[codegen][table]") {
+TEST_CASE("long tables wrap at 16 entries with the first index of each row", "[codegen][table]") {
     std::vector<SearchResult> results;
     for (int n = 1; n <= 17; ++n) results.push_back(result(n, n, {n}, 4));
     const std::string text = format_table(results, TableFormat::glsl, kProvenance);
@@ -127,11 +129,11 @@ TEST_CASE("the provenance comment cannot be broken by odd characters", "[codegen
 
 TEST_CASE("format_table refuses empty or unordered results", "[codegen][table]") {
     CHECK_THROWS_AS(format_table({}, TableFormat::md, kProvenance), std::invalid_argument);
-    CHECK_THROWS_AS(format_table({result(3, 1, {1}, 24), result(2, 1, {1}, 12)},
-                                 TableFormat::md, kProvenance),
-                    std::invalid_argument);
-    CHECK_THROWS_AS(format_table({result(2, 1, {1}, 12), result(2, 1, {1}, 12)},
-                                 TableFormat::json, kProvenance),
+    CHECK_THROWS_AS(
+        format_table({result(3, 1, {1}, 24), result(2, 1, {1}, 12)}, TableFormat::md, kProvenance),
+        std::invalid_argument);
+    CHECK_THROWS_AS(format_table({result(2, 1, {1}, 12), result(2, 1, {1}, 12)}, TableFormat::json,
+                                 kProvenance),
                     std::invalid_argument);
     CHECK_THROWS_AS(format_table({result(0, 1, {1}, 0)}, TableFormat::cpp, kProvenance),
                     std::invalid_argument);

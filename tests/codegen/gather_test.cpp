@@ -106,8 +106,8 @@ TEST_CASE("hand-derived taps are exact", "[codegen][gather]") {
 TEST_CASE("taps match the long-double oracle for every n <= 300", "[codegen][gather]") {
     int compared = 0;
     for (int n = 1; n <= 300; ++n) {
-        for (long long tau : {1LL, 2LL, n / 2 + 1LL, n - 1LL, 1LL * n, n + 1LL, 7LL * n + 3,
-                              999'999'937LL}) {
+        for (long long tau :
+             {1LL, 2LL, n / 2 + 1LL, n - 1LL, 1LL * n, n + 1LL, 7LL * n + 3, 999'999'937LL}) {
             if (tau < 1) continue;
             const auto taps = spiral_taps(n, static_cast<int>(tau));
             REQUIRE(taps.size() == static_cast<std::size_t>(n));
@@ -235,7 +235,8 @@ TEST_CASE("every printed offset and alpha reads back as the same float", "[codeg
             CHECK(bits(x) == bits(taps[static_cast<std::size_t>(i)].x));
             CHECK(bits(y) == bits(taps[static_cast<std::size_t>(i)].y));
             alphas = text.find("\n    ", alphas) + 5;
-            CHECK(std::strtof(text.c_str() + alphas, nullptr) == taps[static_cast<std::size_t>(i)].alpha);
+            CHECK(std::strtof(text.c_str() + alphas, nullptr) ==
+                  taps[static_cast<std::size_t>(i)].alpha);
         }
     }
 }
@@ -246,8 +247,8 @@ TEST_CASE("make_gather_header uses the optimizer's optimum and K", "[codegen][ga
     CHECK(text.find("#define AO_NUM_TAPS 11\n") != std::string::npos);
     CHECK(text.find("#define AO_NUM_SPIRAL_TURNS " + std::to_string(optimum.tau) + "\n") !=
           std::string::npos);
-    CHECK(text.find("D(11, " + std::to_string(optimum.tau) + ") = " +
-                    std::to_string(optimum.scaled) + "/484") != std::string::npos);
+    CHECK(text.find("D(11, " + std::to_string(optimum.tau) +
+                    ") = " + std::to_string(optimum.scaled) + "/484") != std::string::npos);
 
     // tau = n puts every tap on one ray: never optimal for n = 11.
     const auto ray = spiral::discrepancy(11, 11);
@@ -260,7 +261,8 @@ TEST_CASE("make_gather_header uses the optimizer's optimum and K", "[codegen][ga
           std::string::npos);
 
     // tau beyond n is kept as given; tau + 2n has the optimum's discrepancy.
-    const auto wrapped = spiral::codegen::make_gather_header("ao", 11, optimum.tau + 22, kProvenance);
+    const auto wrapped =
+        spiral::codegen::make_gather_header("ao", 11, optimum.tau + 22, kProvenance);
     CHECK(wrapped.find("#define AO_NUM_SPIRAL_TURNS " + std::to_string(optimum.tau + 22) + "\n") !=
           std::string::npos);
     CHECK(wrapped.find("ties with the optimum") != std::string::npos);

@@ -29,7 +29,8 @@ std::string golden(const std::string& name) {
 std::vector<float> array_values(const std::string& text, const std::string& symbol) {
     // The declaration, not a mention in the comments: a line "const <type> SYMBOL[".
     auto start = text.find(symbol + "[");
-    while (start != std::string::npos && text.compare(text.rfind('\n', start) + 1, 6, "const ") != 0)
+    while (start != std::string::npos &&
+           text.compare(text.rfind('\n', start) + 1, 6, "const ") != 0)
         start = text.find(symbol + "[", start + 1);
     REQUIRE(start != std::string::npos);
     const auto open = text.find("](", start);
@@ -97,8 +98,8 @@ TEST_CASE("golden: ao, 3 taps", "[codegen][golden]") {
     const std::string text = golden("ao_taps_3.glsl");
     const double s3 = std::sqrt(3.0);
     CHECK(array_values(text, "AO_TAP_OFFSETS") ==
-          std::vector<float>{static_cast<float>(1.0 / 12), static_cast<float>(s3 / 12), -0.5f,
-                             0.0f, static_cast<float>(5.0 / 12), static_cast<float>(-5 * s3 / 12)});
+          std::vector<float>{static_cast<float>(1.0 / 12), static_cast<float>(s3 / 12), -0.5f, 0.0f,
+                             static_cast<float>(5.0 / 12), static_cast<float>(-5 * s3 / 12)});
     CHECK(array_values(text, "AO_TAP_ALPHAS") ==
           std::vector<float>{static_cast<float>(1.0 / 6), 0.5f, static_cast<float>(5.0 / 6)});
     CHECK(text.find("#define AO_NUM_SPIRAL_TURNS 1\n") != std::string::npos);

@@ -30,7 +30,8 @@ void check_against_oracle(int n, int tau) {
 
 }  // namespace
 
-TEST_CASE("fast evaluator equals the brute force for every tau and n <= 40", "[discrepancy][oracle]") {
+TEST_CASE("fast evaluator equals the brute force for every tau and n <= 40",
+          "[discrepancy][oracle]") {
     const int n = GENERATE(range(1, 41));
     for (int tau = 1; tau <= n; ++tau) check_against_oracle(n, tau);
 }
@@ -39,9 +40,22 @@ TEST_CASE("fast evaluator equals the brute force on sampled larger n", "[discrep
     // Primes, powers of two, Fibonacci numbers and highly composite n, each
     // with a near-optimal tau, a poor one and a shared-angle one where possible.
     const auto [n, tau] = GENERATE(table<int, int>({
-        {41, 16}, {41, 3}, {55, 21}, {55, 34}, {64, 17}, {64, 32}, {64, 24},
-        {89, 34}, {97, 41}, {100, 38}, {100, 50}, {120, 45}, {127, 1}, {144, 55},
-        {160, 61}, {160, 40},
+        {41, 16},
+        {41, 3},
+        {55, 21},
+        {55, 34},
+        {64, 17},
+        {64, 32},
+        {64, 24},
+        {89, 34},
+        {97, 41},
+        {100, 38},
+        {100, 50},
+        {120, 45},
+        {127, 1},
+        {144, 55},
+        {160, 61},
+        {160, 40},
     }));
     check_against_oracle(n, tau);
 }
@@ -124,7 +138,8 @@ TEST_CASE("hard cases", "[discrepancy][hard]") {
         }
     }
     SECTION("shared angles when gcd(tau, n) > 1 agree with the brute force") {
-        for (const auto& [n, tau] : {std::pair{12, 4}, {12, 6}, {18, 6}, {30, 10}, {36, 9}, {48, 12}}) {
+        for (const auto& [n, tau] :
+             {std::pair{12, 4}, {12, 6}, {18, 6}, {30, 10}, {36, 9}, {48, 12}}) {
             REQUIRE(std::gcd(n, tau) > 1);
             check_against_oracle(n, tau);
         }

@@ -89,12 +89,13 @@ TEST_CASE("results do not depend on the thread count", "[search][threads]") {
 
 TEST_CASE("search_range reports progress once per n", "[search]") {
     int calls = 0, last_done = 0;
-    const auto results = spiral::search_range(5, 24, spiral::SearchOptions{2}, [&](int done, int total) {
-        ++calls;
-        CHECK(total == 20);
-        CHECK(done == last_done + 1);
-        last_done = done;
-    });
+    const auto results =
+        spiral::search_range(5, 24, spiral::SearchOptions{2}, [&](int done, int total) {
+            ++calls;
+            CHECK(total == 20);
+            CHECK(done == last_done + 1);
+            last_done = done;
+        });
     CHECK(calls == 20);
     REQUIRE(results.size() == 20);
     CHECK(results.front().n == 5);

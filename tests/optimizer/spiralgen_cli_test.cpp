@@ -42,8 +42,9 @@ TEST_CASE("table json carries the search's exact values", "[cli][table]") {
         if (!ties.empty()) ties.push_back(',');
         ties.append(std::to_string(tau));
     }
-    const std::string object = "{\"n\":12,\"tau\":" + std::to_string(expected.tau) + ",\"ties\":[" + ties +
-                               "],\"discrepancy\":{\"num\":" + std::to_string(expected.scaled) + ",\"den\":576,";
+    const std::string object =
+        "{\"n\":12,\"tau\":" + std::to_string(expected.tau) + ",\"ties\":[" + ties +
+        "],\"discrepancy\":{\"num\":" + std::to_string(expected.scaled) + ",\"den\":576,";
     CHECK(result.out.find(object) != std::string::npos);
 }
 
@@ -56,28 +57,19 @@ TEST_CASE("discrepancy reports the exact fraction and the worst sector", "[cli][
 
     const auto json = spiralgen("discrepancy --n 11 --tau 3 --format json");
     REQUIRE(json.status == 0);
-    CHECK(json.out.find("\"num\":" + std::to_string(d.scaled) + ",\"den\":484") != std::string::npos);
+    CHECK(json.out.find("\"num\":" + std::to_string(d.scaled) + ",\"den\":484") !=
+          std::string::npos);
     CHECK(json.out.find("\"count\":" + std::to_string(d.worst.count)) != std::string::npos);
 }
 
 TEST_CASE("bad input gives one line on stderr and exit status 2", "[cli][errors]") {
-    const std::string arguments = GENERATE(as<std::string>{},
-        "discrepancy --n abc --tau 3",
-        "discrepancy --n 0 --tau 3",
-        "discrepancy --n 70000 --tau 3",
-        "discrepancy --n 11 --tau 0",
-        "discrepancy --n 11 --tau -4",
-        "discrepancy --n 11",
-        "discrepancy --n 11 --tau 3 --format xml",
-        "table --min-n 0",
-        "table --max-n 99999",
-        "table --min-n 10 --max-n 5",
-        "table --format yaml",
-        "table --jobs -2",
-        "table --max-n x",
-        "table --out /nonexistent-dir/sub/table.md",
-        "frobnicate",
-        "");
+    const std::string arguments = GENERATE(
+        as<std::string>{}, "discrepancy --n abc --tau 3", "discrepancy --n 0 --tau 3",
+        "discrepancy --n 70000 --tau 3", "discrepancy --n 11 --tau 0",
+        "discrepancy --n 11 --tau -4", "discrepancy --n 11",
+        "discrepancy --n 11 --tau 3 --format xml", "table --min-n 0", "table --max-n 99999",
+        "table --min-n 10 --max-n 5", "table --format yaml", "table --jobs -2", "table --max-n x",
+        "table --out /nonexistent-dir/sub/table.md", "frobnicate", "");
     INFO("spiralgen " << arguments);
     const auto result = spiralgen(arguments);
     CHECK(result.status == 2);
@@ -105,7 +97,8 @@ TEST_CASE("--out is written atomically and a failing run leaves no file", "[cli]
         CHECK(spiral::test::read_file(out) == to_stdout.out);
     }
     SECTION("a failing run creates nothing") {
-        const auto result = spiralgen("table --max-n 40 --format nope --out '" + out.string() + "'");
+        const auto result =
+            spiralgen("table --max-n 40 --format nope --out '" + out.string() + "'");
         CHECK(result.status == 2);
         CHECK_FALSE(std::filesystem::exists(out));
     }

@@ -12,74 +12,78 @@ namespace deepgi::test {
 namespace {
 
 std::vector<FloatImage> read_pyramid(const Renderer& renderer) {
-  std::vector<FloatImage> levels;
-  const auto names = renderer.pass_output_names();
-  for (int level = 0;; ++level) {
-    const std::string name = fmt::format("depth_pyramid-level{}", level);
-    if (std::find(names.begin(), names.end(), name) == names.end()) return levels;
-    levels.push_back(renderer.read_pass_output(name));
-  }
+    std::vector<FloatImage> levels;
+    const auto names = renderer.pass_output_names();
+    for (int level = 0;; ++level) {
+        const std::string name = fmt::format("depth_pyramid-level{}", level);
+        if (std::find(names.begin(), names.end(), name) == names.end()) return levels;
+        levels.push_back(renderer.read_pass_output(name));
+    }
 }
 
 TEST_CASE("depth pyramid level 0 is the linear depth of both layers", "[pyramid]") {
-  HeadlessContext context;
-  const Scene scene = occluded_floor();
-  Renderer renderer(scene, small_settings(160, 90), ShaderLoader::from_build_configuration());
-  renderer.render(scene.default_camera);
-  const FloatImage base = read_pyramid(renderer).at(0);
-  int layer1_surfaces = 0;
-  for (int layer = 0; layer < 2; ++layer) {
-    // The renderer's read-back converts stored near/z to metres on the CPU.
-    const FloatImage depth = renderer.read_pass_output(fmt::format("gbuffer-depth-layer{}", layer));
-    REQUIRE(depth.width == base.width);
-    REQUIRE(depth.height == base.height);
-    int mismatches = 0;
-    for (int y = 0; y < base.height; ++y) {
-      for (int x = 0; x < base.width; ++x) {
-        const float expected = depth.at(x, y);
-        const float actual = base.at(x, y, layer);
-        if (expected == 0.0f ? actual != 0.0f : std::abs(actual - expected) > 1e-6f * expected) ++mismatches;
-        if (layer == 1 && expected > 0.0f) ++layer1_surfaces;
-      }
+    HeadlessContext context;
+    const Scene scene = occluded_floor();
+    Renderer renderer(scene, small_settings(160, 90), ShaderLoader::from_build_configuration());
+    renderer.render(scene.default_camera);
+    const FloatImage base = read_pyramid(renderer).at(0);
+    int layer1_surfaces = 0;
+    for (int layer = 0; layer < 2; ++layer) {
+        // The renderer's read-back converts stored near/z to metres on the CPU.
+        const FloatImage depth =
+            renderer.read_pass_output(fmt::format("gbuffer-depth-layer{}", layer));
+        REQUIRE(depth.width == base.width);
+        REQUIRE(depth.height == base.height);
+        int mismatches = 0;
+        for (int y = 0; y < base.height; ++y) {
+            for (int x = 0; x < base.width; ++x) {
+                const float expected = depth.at(x, y);
+                const float actual = base.at(x, y, layer);
+                if (expected == 0.0f ? actual != 0.0f
+                                     : std::abs(actual - expected) > 1e-6f * expected)
+                    ++mismatches;
+                if (layer == 1 && expected > 0.0f) ++layer1_surfaces;
+            }
+        }
+        INFO("layer " << layer);
+        CHECK(mismatches == 0);
     }
-    INFO("layer " << layer);
-    CHECK(mismatches == 0);
-  }
-  CHECK(layer1_surfaces > 100);  // the scene puts something behind layer 0
+    CHECK(layer1_surfaces > 100);  // the scene puts something behind layer 0
 }
 
 TEST_CASE("depth pyramid levels are rotated-grid subsamples at any size", "[pyramid]") {
-  HeadlessContext context;
-  const Scene scene = occluded_floor(true);
-  struct Size {
-    int width;
-    int height;
-    float guard;
-  };
-  for (Size size : {Size{160, 90, 0.1f}, Size{161, 91, 0.1f}, Size{7, 3, 0.0f}, Size{2, 1, 0.0f}, Size{1, 1, 0.0f},
-                    Size{1, 1, 0.5f}}) {
-    for (int max_level : {5, 2, 0}) {
-      RenderSettings settings = small_settings(size.width, size.height);
-      settings.guard_band_fraction = size.guard;
-      settings.ao.max_mip_level = max_level;
-      Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-      renderer.render(scene.default_camera);
-      const std::vector<FloatImage> levels = read_pyramid(renderer);
-      const FrameLayout layout = frame_layout(settings);
-      const int largest = std::max(layout.internal_width, layout.internal_height);
-      const int expected_levels = std::min(max_level, int(std::bit_width(unsigned(largest))) - 1) + 1;
-      INFO(size.width << "x" << size.height << " (internal " << layout.internal_width << "x" << layout.internal_height
-                      << "), max level " << max_level);
-      REQUIRE(int(levels.size()) == expected_levels);
-      for (std::size_t m = 1; m < levels.size(); ++m) {
-        const FloatImage expected = reference_pyramid_level(levels[m - 1]);
-        REQUIRE(levels[m].width == expected.width);
-        REQUIRE(levels[m].height == expected.height);
-        // Copies, never averages: every value is bit-identical to the chosen texel.
-        CHECK(levels[m].pixels == expected.pixels);
-      }
+    HeadlessContext context;
+    const Scene scene = occluded_floor(true);
+    struct Size {
+        int width;
+        int height;
+        float guard;
+    };
+    for (Size size : {Size{160, 90, 0.1f}, Size{161, 91, 0.1f}, Size{7, 3, 0.0f}, Size{2, 1, 0.0f},
+                      Size{1, 1, 0.0f}, Size{1, 1, 0.5f}}) {
+        for (int max_level : {5, 2, 0}) {
+            RenderSettings settings = small_settings(size.width, size.height);
+            settings.guard_band_fraction = size.guard;
+            settings.ao.max_mip_level = max_level;
+            Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+            renderer.render(scene.default_camera);
+            const std::vector<FloatImage> levels = read_pyramid(renderer);
+            const FrameLayout layout = frame_layout(settings);
+            const int largest = std::max(layout.internal_width, layout.internal_height);
+            const int expected_levels =
+                std::min(max_level, int(std::bit_width(unsigned(largest))) - 1) + 1;
+            INFO(size.width << "x" << size.height << " (internal " << layout.internal_width << "x"
+                            << layout.internal_height << "), max level " << max_level);
+            REQUIRE(int(levels.size()) == expected_levels);
+            for (std::size_t m = 1; m < levels.size(); ++m) {
+                const FloatImage expected = reference_pyramid_level(levels[m - 1]);
+                REQUIRE(levels[m].width == expected.width);
+                REQUIRE(levels[m].height == expected.height);
+                // Copies, never averages: every value is bit-identical to the chosen texel.
+                CHECK(levels[m].pixels == expected.pixels);
+            }
+        }
     }
-  }
 }
 
 }  // namespace

@@ -9,116 +9,132 @@ namespace deepgi::test {
 namespace {
 
 std::uint32_t avalanche32(std::uint32_t h) {
-  h ^= h >> 16;
-  h *= 0x85ebca6bu;
-  h ^= h >> 13;
-  h *= 0xc2b2ae35u;
-  h ^= h >> 16;
-  return h;
+    h ^= h >> 16;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16;
+    return h;
 }
 
 // Pixel centre (x + 1/2, y + 1/2) at linear depth z, as camera_position_at() in
 // gbuffer_encoding.glsl defines camera space: x, y from the NDC of the centre.
 glm::vec3 camera_position(float centre_x, float centre_y, float depth, const SaoInputs& inputs) {
-  const float width = float(inputs.pyramid[0].width);
-  const float height = float(inputs.pyramid[0].height);
-  const float ndc_x = centre_x * (1.0f / width) * 2.0f - 1.0f;
-  const float ndc_y = centre_y * (1.0f / height) * 2.0f - 1.0f;
-  return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
+    const float width = float(inputs.pyramid[0].width);
+    const float height = float(inputs.pyramid[0].height);
+    const float ndc_x = centre_x * (1.0f / width) * 2.0f - 1.0f;
+    const float ndc_y = centre_y * (1.0f / height) * 2.0f - 1.0f;
+    return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
 }
 
 float obscurance(glm::vec3 v, glm::vec3 normal, float radius_squared, float bias) {
-  constexpr float epsilon = 1.0e-4f;
-  const float vv = glm::dot(v, v);
-  const float vn = glm::dot(v, normal);
-  return (1.0f - vv / radius_squared) * std::max((vn - bias) / std::sqrt(vv + epsilon), 0.0f);
+    constexpr float epsilon = 1.0e-4f;
+    const float vv = glm::dot(v, v);
+    const float vn = glm::dot(v, normal);
+    return (1.0f - vv / radius_squared) * std::max((vn - bias) / std::sqrt(vv + epsilon), 0.0f);
 }
 
 }  // namespace
 
-std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) { return avalanche32(x ^ avalanche32(y + 0x9e3779b9u)); }
+std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) {
+    return avalanche32(x ^ avalanche32(y + 0x9e3779b9u));
+}
 
 float pixel_rotation_angle(std::uint32_t x, std::uint32_t y) {
-  return float(pixel_rotation_hash(x, y) >> 8) * (1.0f / 16777216.0f) * 6.2831855f;
+    return float(pixel_rotation_hash(x, y) >> 8) * (1.0f / 16777216.0f) * 6.2831855f;
 }
 
 glm::vec2 camera_ray_scale(const Camera& camera, const RenderSettings& settings) {
-  const glm::mat4 projection = guard_band_projection(camera, settings);
-  return {1.0f / projection[0][0], 1.0f / projection[1][1]};
+    const glm::mat4 projection = guard_band_projection(camera, settings);
+    return {1.0f / projection[0][0], 1.0f / projection[1][1]};
 }
 
-FloatImage reference_ambient_visibility(const SaoInputs& inputs, const std::vector<spiral::codegen::Tap>& taps,
+FloatImage reference_ambient_visibility(const SaoInputs& inputs,
+                                        const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings) {
-  const FloatImage& base = inputs.pyramid.at(0);
-  const int width = base.width;
-  const int height = base.height;
-  const int max_mip = int(inputs.pyramid.size()) - 1;
-  FloatImage result;
-  result.width = width;
-  result.height = height;
-  result.channels = 1;
-  result.pixels.assign(std::size_t(width) * std::size_t(height), 1.0f);
-  const float radius_squared = settings.radius * settings.radius;
-  const float n = float(taps.size());
+    const FloatImage& base = inputs.pyramid.at(0);
+    const int width = base.width;
+    const int height = base.height;
+    const int max_mip = int(inputs.pyramid.size()) - 1;
+    FloatImage result;
+    result.width = width;
+    result.height = height;
+    result.channels = 1;
+    result.pixels.assign(std::size_t(width) * std::size_t(height), 1.0f);
+    const float radius_squared = settings.radius * settings.radius;
+    const float n = float(taps.size());
 
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const float depth = base.at(x, y, 0);
-      if (depth <= 0.0f) continue;  // sky
-      const glm::vec3 position = camera_position(float(x) + 0.5f, float(y) + 0.5f, depth, inputs);
-      const glm::vec3 normal(inputs.normals.at(x, y, 0), inputs.normals.at(x, y, 1), inputs.normals.at(x, y, 2));
-      const float radius_pixels = settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
-      const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
-      const float c = std::cos(phi);
-      const float s = std::sin(phi);
-      float sum = 0.0f;
-      for (const auto& tap : taps) {
-        const float offset_x = std::clamp((c * tap.x - s * tap.y) * radius_pixels, -65536.0f, 65536.0f);
-        const float offset_y = std::clamp((s * tap.x + c * tap.y) * radius_pixels, -65536.0f, 65536.0f);
-        const int tap_x = int(std::floor(float(x) + 0.5f + offset_x));
-        const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
-        if (tap_x < 0 || tap_y < 0 || tap_x >= width || tap_y >= height) continue;
-        // m_i = clamp(floor(log2(h_i / q)), 0, MAX_MIP), h_i = alpha_i * R.
-        const float steps = std::min(tap.alpha * radius_pixels / settings.q, 65536.0f);
-        const int level = steps < 1.0f ? 0 : std::min(int(std::floor(std::log2(std::floor(steps)))), max_mip);
-        const FloatImage& mip = inputs.pyramid[std::size_t(level)];
-        const int texel_x = std::min(tap_x >> level, mip.width - 1);
-        const int texel_y = std::min(tap_y >> level, mip.height - 1);
-        float occlusion = 0.0f;
-        for (int layer = 0; layer < settings.layers; ++layer) {
-          const float tap_depth = mip.at(texel_x, texel_y, layer);
-          if (tap_depth <= 0.0f) continue;
-          const glm::vec3 v = camera_position(float(tap_x) + 0.5f, float(tap_y) + 0.5f, tap_depth, inputs) - position;
-          occlusion = std::max(occlusion, obscurance(v, normal, radius_squared, settings.bias));
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float depth = base.at(x, y, 0);
+            if (depth <= 0.0f) continue;  // sky
+            const glm::vec3 position =
+                camera_position(float(x) + 0.5f, float(y) + 0.5f, depth, inputs);
+            const glm::vec3 normal(inputs.normals.at(x, y, 0), inputs.normals.at(x, y, 1),
+                                   inputs.normals.at(x, y, 2));
+            const float radius_pixels =
+                settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
+            const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
+            const float c = std::cos(phi);
+            const float s = std::sin(phi);
+            float sum = 0.0f;
+            for (const auto& tap : taps) {
+                const float offset_x =
+                    std::clamp((c * tap.x - s * tap.y) * radius_pixels, -65536.0f, 65536.0f);
+                const float offset_y =
+                    std::clamp((s * tap.x + c * tap.y) * radius_pixels, -65536.0f, 65536.0f);
+                const int tap_x = int(std::floor(float(x) + 0.5f + offset_x));
+                const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
+                if (tap_x < 0 || tap_y < 0 || tap_x >= width || tap_y >= height) continue;
+                // m_i = clamp(floor(log2(h_i / q)), 0, MAX_MIP), h_i = alpha_i * R.
+                const float steps = std::min(tap.alpha * radius_pixels / settings.q, 65536.0f);
+                const int level =
+                    steps < 1.0f ? 0
+                                 : std::min(int(std::floor(std::log2(std::floor(steps)))), max_mip);
+                const FloatImage& mip = inputs.pyramid[std::size_t(level)];
+                const int texel_x = std::min(tap_x >> level, mip.width - 1);
+                const int texel_y = std::min(tap_y >> level, mip.height - 1);
+                float occlusion = 0.0f;
+                for (int layer = 0; layer < settings.layers; ++layer) {
+                    const float tap_depth = mip.at(texel_x, texel_y, layer);
+                    if (tap_depth <= 0.0f) continue;
+                    const glm::vec3 v = camera_position(float(tap_x) + 0.5f, float(tap_y) + 0.5f,
+                                                        tap_depth, inputs) -
+                                        position;
+                    occlusion =
+                        std::max(occlusion, obscurance(v, normal, radius_squared, settings.bias));
+                }
+                sum += occlusion;
+            }
+            const float visibility = std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum));
+            result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                std::pow(visibility, settings.intensity);
         }
-        sum += occlusion;
-      }
-      const float visibility = std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum));
-      result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] = std::pow(visibility, settings.intensity);
     }
-  }
-  return result;
+    return result;
 }
 
 FloatImage reference_pyramid_level(const FloatImage& finer) {
-  FloatImage coarser;
-  coarser.width = std::max(1, finer.width / 2);
-  coarser.height = std::max(1, finer.height / 2);
-  coarser.channels = finer.channels;
-  coarser.pixels.resize(std::size_t(coarser.width) * std::size_t(coarser.height) * std::size_t(finer.channels));
-  for (int y = 0; y < coarser.height; ++y) {
-    for (int x = 0; x < coarser.width; ++x) {
-      // One texel of the 2x2 block, the corner alternating with the other
-      // axis's parity (McGuire et al. 2012); clamped for odd or unit sizes.
-      const int from_x = std::min(2 * x + ((y & 1) ^ 1), finer.width - 1);
-      const int from_y = std::min(2 * y + ((x & 1) ^ 1), finer.height - 1);
-      for (int c = 0; c < finer.channels; ++c) {
-        coarser.pixels[(std::size_t(y) * std::size_t(coarser.width) + std::size_t(x)) * std::size_t(finer.channels) +
-                       std::size_t(c)] = finer.at(from_x, from_y, c);
-      }
+    FloatImage coarser;
+    coarser.width = std::max(1, finer.width / 2);
+    coarser.height = std::max(1, finer.height / 2);
+    coarser.channels = finer.channels;
+    coarser.pixels.resize(std::size_t(coarser.width) * std::size_t(coarser.height) *
+                          std::size_t(finer.channels));
+    for (int y = 0; y < coarser.height; ++y) {
+        for (int x = 0; x < coarser.width; ++x) {
+            // One texel of the 2x2 block, the corner alternating with the other
+            // axis's parity (McGuire et al. 2012); clamped for odd or unit sizes.
+            const int from_x = std::min(2 * x + ((y & 1) ^ 1), finer.width - 1);
+            const int from_y = std::min(2 * y + ((x & 1) ^ 1), finer.height - 1);
+            for (int c = 0; c < finer.channels; ++c) {
+                coarser.pixels[(std::size_t(y) * std::size_t(coarser.width) + std::size_t(x)) *
+                                   std::size_t(finer.channels) +
+                               std::size_t(c)] = finer.at(from_x, from_y, c);
+            }
+        }
     }
-  }
-  return coarser;
+    return coarser;
 }
 
 }  // namespace deepgi::test

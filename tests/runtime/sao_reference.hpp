@@ -20,13 +20,15 @@ float pixel_rotation_angle(std::uint32_t x, std::uint32_t y);
 
 // What the pass reads, as read back from the GPU.
 struct SaoInputs {
-  std::vector<FloatImage> pyramid;  // level m: channel 0 layer-0 depth, 1 layer-1 depth; 0 = no surface
-  FloatImage normals;               // layer-0 camera-space normals, 3 channels
-  glm::vec2 ray_scale{1.0f};        // (1/P00, 1/P11) of the guard-banded projection
+    std::vector<FloatImage>
+        pyramid;                // level m: channel 0 layer-0 depth, 1 layer-1 depth; 0 = no surface
+    FloatImage normals;         // layer-0 camera-space normals, 3 channels
+    glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
 };
 
 // Ambient visibility per pixel (1 channel, the pyramid's level-0 size).
-FloatImage reference_ambient_visibility(const SaoInputs& inputs, const std::vector<spiral::codegen::Tap>& taps,
+FloatImage reference_ambient_visibility(const SaoInputs& inputs,
+                                        const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings);
 
 // Level m + 1 of the pyramid from level m by the rotated-grid rule.

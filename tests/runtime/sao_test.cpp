@@ -12,197 +12,206 @@ namespace deepgi::test {
 namespace {
 
 struct FrameReadBack {
-  SaoInputs inputs;
-  FloatImage raw;
-  FloatImage blurred;
+    SaoInputs inputs;
+    FloatImage raw;
+    FloatImage blurred;
 };
 
-FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
-  Renderer renderer(scene, settings, loader);
-  renderer.render(scene.default_camera);
-  FrameReadBack frame;
-  for (int level = 0;; ++level) {
-    const std::string name = fmt::format("depth_pyramid-level{}", level);
-    const auto names = renderer.pass_output_names();
-    if (std::find(names.begin(), names.end(), name) == names.end()) break;
-    frame.inputs.pyramid.push_back(renderer.read_pass_output(name));
-  }
-  frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
-  frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
-  frame.raw = renderer.read_pass_output("ao-raw");
-  frame.blurred = renderer.read_pass_output("ao-blurred");
-  return frame;
+FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings,
+                              const ShaderLoader& loader) {
+    Renderer renderer(scene, settings, loader);
+    renderer.render(scene.default_camera);
+    FrameReadBack frame;
+    for (int level = 0;; ++level) {
+        const std::string name = fmt::format("depth_pyramid-level{}", level);
+        const auto names = renderer.pass_output_names();
+        if (std::find(names.begin(), names.end(), name) == names.end()) break;
+        frame.inputs.pyramid.push_back(renderer.read_pass_output(name));
+    }
+    frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
+    frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
+    frame.raw = renderer.read_pass_output("ao-raw");
+    frame.blurred = renderer.read_pass_output("ao-blurred");
+    return frame;
 }
 
 struct Agreement {
-  double fraction_within = 0.0;  // of pixels within the tolerance
-  float worst = 0.0f;
-  int occluded = 0;  // reference pixels with AV < 0.9: the comparison is not all ones
+    double fraction_within = 0.0;  // of pixels within the tolerance
+    float worst = 0.0f;
+    int occluded = 0;  // reference pixels with AV < 0.9: the comparison is not all ones
 };
 
 Agreement compare(const FloatImage& gpu, const FloatImage& cpu, float tolerance) {
-  REQUIRE(gpu.width == cpu.width);
-  REQUIRE(gpu.height == cpu.height);
-  Agreement agreement;
-  std::size_t within = 0;
-  for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
-    const float error = std::abs(gpu.pixels[i] - cpu.pixels[i]);
-    within += error <= tolerance;
-    agreement.worst = std::max(agreement.worst, error);
-    agreement.occluded += cpu.pixels[i] < 0.9f;
-  }
-  agreement.fraction_within = double(within) / double(cpu.pixels.size());
-  return agreement;
+    REQUIRE(gpu.width == cpu.width);
+    REQUIRE(gpu.height == cpu.height);
+    Agreement agreement;
+    std::size_t within = 0;
+    for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+        const float error = std::abs(gpu.pixels[i] - cpu.pixels[i]);
+        within += error <= tolerance;
+        agreement.worst = std::max(agreement.worst, error);
+        agreement.occluded += cpu.pixels[i] < 0.9f;
+    }
+    agreement.fraction_within = double(within) / double(cpu.pixels.size());
+    return agreement;
 }
 
-void check_against_reference(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader,
+void check_against_reference(const Scene& scene, const RenderSettings& settings,
+                             const ShaderLoader& loader,
                              const std::vector<spiral::codegen::Tap>& taps) {
-  HeadlessContext context;
-  const FrameReadBack frame = render_and_read(scene, settings, loader);
-  const FloatImage expected = reference_ambient_visibility(frame.inputs, taps, settings.ao);
-  const Agreement agreement = compare(frame.raw, expected, 1e-3f);
-  INFO("scene " << scene.name << ", " << taps.size() << " taps, layers " << settings.ao.layers << ": "
-                << agreement.fraction_within * 100.0 << "% within 1e-3, worst " << agreement.worst);
-  CHECK(agreement.occluded > int(expected.pixels.size() / 20));
-  CHECK(agreement.fraction_within >= 0.999);
-  CHECK(agreement.worst <= 1e-2f);
+    HeadlessContext context;
+    const FrameReadBack frame = render_and_read(scene, settings, loader);
+    const FloatImage expected = reference_ambient_visibility(frame.inputs, taps, settings.ao);
+    const Agreement agreement = compare(frame.raw, expected, 1e-3f);
+    INFO("scene " << scene.name << ", " << taps.size() << " taps, layers " << settings.ao.layers
+                  << ": " << agreement.fraction_within * 100.0 << "% within 1e-3, worst "
+                  << agreement.worst);
+    CHECK(agreement.occluded > int(expected.pixels.size() / 20));
+    CHECK(agreement.fraction_within >= 0.999);
+    CHECK(agreement.worst <= 1e-2f);
 }
 
 TEST_CASE("deep SAO matches the CPU evaluation with the build-time taps", "[reference]") {
-  const auto taps = build_time_ao_taps();
-  const ShaderLoader loader = ShaderLoader::from_build_configuration();
-  for (int layers : {2, 1}) {
-    RenderSettings settings = small_settings(160, 90);
-    settings.ao.layers = layers;
-    check_against_reference(make_builtin_scene("cornell"), settings, loader, taps);
-    check_against_reference(occluded_floor(), settings, loader, taps);
-  }
+    const auto taps = build_time_ao_taps();
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (int layers : {2, 1}) {
+        RenderSettings settings = small_settings(160, 90);
+        settings.ao.layers = layers;
+        check_against_reference(make_builtin_scene("cornell"), settings, loader, taps);
+        check_against_reference(occluded_floor(), settings, loader, taps);
+    }
 }
 
-TEST_CASE("deep SAO matches the CPU evaluation with other parameters and tap patterns", "[reference]") {
-  TemporaryFolder headers;
-  const ShaderLoader loader = loader_with_override(headers.path());
-  RenderSettings settings = small_settings(161, 91);  // odd sizes on purpose
-  settings.ao.radius = 1.2f;
-  settings.ao.bias = 0.05f;
-  settings.ao.intensity = 2.0f;
-  settings.ao.q = 4.0f;
-  settings.ao.max_mip_level = 3;
-  for (auto [n, tau] : {std::pair{8, 3}, std::pair{16, 1}, std::pair{32, 7}}) {
-    write_ao_header(headers.path(), n, tau);
-    check_against_reference(make_builtin_scene("cornell"), settings, loader, spiral::codegen::spiral_taps(n, tau));
-  }
+TEST_CASE("deep SAO matches the CPU evaluation with other parameters and tap patterns",
+          "[reference]") {
+    TemporaryFolder headers;
+    const ShaderLoader loader = loader_with_override(headers.path());
+    RenderSettings settings = small_settings(161, 91);  // odd sizes on purpose
+    settings.ao.radius = 1.2f;
+    settings.ao.bias = 0.05f;
+    settings.ao.intensity = 2.0f;
+    settings.ao.q = 4.0f;
+    settings.ao.max_mip_level = 3;
+    for (auto [n, tau] : {std::pair{8, 3}, std::pair{16, 1}, std::pair{32, 7}}) {
+        write_ao_header(headers.path(), n, tau);
+        check_against_reference(make_builtin_scene("cornell"), settings, loader,
+                                spiral::codegen::spiral_taps(n, tau));
+    }
 }
 
 TEST_CASE("an unoccluded plane has visibility 1", "[reference]") {
-  HeadlessContext context;
-  const ShaderLoader loader = ShaderLoader::from_build_configuration();
-  for (float distance : {0.5f, 3.0f, 40.0f}) {
-    for (int layers : {1, 2}) {
-      Scene scene = camera_facing_plane(distance);
-      RenderSettings settings = small_settings(160, 90);
-      settings.ao.layers = layers;
-      settings.ao.radius = 2.0f;  // taps spread far, many off the buffer
-      const FrameReadBack frame = render_and_read(scene, settings, loader);
-      const int guard = frame_layout(settings).guard;
-      float lowest = 1.0f;
-      for (int y = guard; y < frame.raw.height - guard; ++y) {
-        for (int x = guard; x < frame.raw.width - guard; ++x) {
-          lowest = std::min({lowest, frame.raw.at(x, y), frame.blurred.at(x, y)});
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (float distance : {0.5f, 3.0f, 40.0f}) {
+        for (int layers : {1, 2}) {
+            Scene scene = camera_facing_plane(distance);
+            RenderSettings settings = small_settings(160, 90);
+            settings.ao.layers = layers;
+            settings.ao.radius = 2.0f;  // taps spread far, many off the buffer
+            const FrameReadBack frame = render_and_read(scene, settings, loader);
+            const int guard = frame_layout(settings).guard;
+            float lowest = 1.0f;
+            for (int y = guard; y < frame.raw.height - guard; ++y) {
+                for (int x = guard; x < frame.raw.width - guard; ++x) {
+                    lowest = std::min({lowest, frame.raw.at(x, y), frame.blurred.at(x, y)});
+                }
+            }
+            INFO("plane at " << distance << " m, " << layers << " layer(s)");
+            CHECK(lowest >= 1.0f - 1e-3f);
         }
-      }
-      INFO("plane at " << distance << " m, " << layers << " layer(s)");
-      CHECK(lowest >= 1.0f - 1e-3f);
     }
-  }
 }
 
 TEST_CASE("two layers never see less occlusion than one", "[reference]") {
-  HeadlessContext context;
-  const ShaderLoader loader = ShaderLoader::from_build_configuration();
-  for (const Scene& scene : {make_builtin_scene("cornell"), occluded_floor(), make_builtin_scene("warehouse")}) {
-    RenderSettings settings = small_settings(160, 90);
-    settings.ao.layers = 1;
-    const FloatImage one = render_and_read(scene, settings, loader).raw;
-    settings.ao.layers = 2;
-    const FloatImage two = render_and_read(scene, settings, loader).raw;
-    int violations = 0;
-    int darker = 0;
-    for (std::size_t i = 0; i < one.pixels.size(); ++i) {
-      violations += two.pixels[i] > one.pixels[i];
-      darker += two.pixels[i] < one.pixels[i] - 1e-3f;
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (const Scene& scene :
+         {make_builtin_scene("cornell"), occluded_floor(), make_builtin_scene("warehouse")}) {
+        RenderSettings settings = small_settings(160, 90);
+        settings.ao.layers = 1;
+        const FloatImage one = render_and_read(scene, settings, loader).raw;
+        settings.ao.layers = 2;
+        const FloatImage two = render_and_read(scene, settings, loader).raw;
+        int violations = 0;
+        int darker = 0;
+        for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+            violations += two.pixels[i] > one.pixels[i];
+            darker += two.pixels[i] < one.pixels[i] - 1e-3f;
+        }
+        INFO(scene.name << ": " << darker << " pixels darker with two layers");
+        CHECK(violations == 0);
+        CHECK(darker > 0);  // layer 1 adds occlusion somewhere, so the comparison means something
     }
-    INFO(scene.name << ": " << darker << " pixels darker with two layers");
-    CHECK(violations == 0);
-    CHECK(darker > 0);  // layer 1 adds occlusion somewhere, so the comparison means something
-  }
 }
 
-TEST_CASE("no NaN or Inf at grazing angles, near the near plane, on sky and at tiny sizes", "[robustness]") {
-  HeadlessContext context;
-  const ShaderLoader loader = ShaderLoader::from_build_configuration();
-  struct Case {
-    std::string what;
-    Scene scene;
-    int width;
-    int height;
-  };
-  Scene grazing = occluded_floor();
-  grazing.default_camera.pitch = glm::radians(-0.3f);  // the floor seen almost edge-on
-  grazing.default_camera.position.y = -0.99f;
-  Scene sky = occluded_floor();
-  sky.default_camera.pitch = glm::radians(30.0f);  // half the view is empty
-  const std::vector<Case> cases = {
-      {"grazing floor", grazing, 160, 90},
-      {"near-plane quad", occluded_floor(true), 160, 90},
-      {"sky", sky, 160, 90},
-      {"1x1", occluded_floor(true), 1, 1},
-      {"3x5", occluded_floor(), 3, 5},
-      {"161x91", occluded_floor(true), 161, 91},
-  };
-  for (const Case& test : cases) {
-    for (int layers : {1, 2}) {
-      RenderSettings settings = small_settings(test.width, test.height);
-      settings.ao.layers = layers;
-      const FrameReadBack frame = render_and_read(test.scene, settings, loader);
-      INFO(test.what << ", " << layers << " layer(s)");
-      for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
-        CHECK(all_finite(*image));
-        CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
-        CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
-      }
-      for (const FloatImage& level : frame.inputs.pyramid) CHECK(all_finite(level));
+TEST_CASE("no NaN or Inf at grazing angles, near the near plane, on sky and at tiny sizes",
+          "[robustness]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    struct Case {
+        std::string what;
+        Scene scene;
+        int width;
+        int height;
+    };
+    Scene grazing = occluded_floor();
+    grazing.default_camera.pitch = glm::radians(-0.3f);  // the floor seen almost edge-on
+    grazing.default_camera.position.y = -0.99f;
+    Scene sky = occluded_floor();
+    sky.default_camera.pitch = glm::radians(30.0f);  // half the view is empty
+    const std::vector<Case> cases = {
+        {"grazing floor", grazing, 160, 90},
+        {"near-plane quad", occluded_floor(true), 160, 90},
+        {"sky", sky, 160, 90},
+        {"1x1", occluded_floor(true), 1, 1},
+        {"3x5", occluded_floor(), 3, 5},
+        {"161x91", occluded_floor(true), 161, 91},
+    };
+    for (const Case& test : cases) {
+        for (int layers : {1, 2}) {
+            RenderSettings settings = small_settings(test.width, test.height);
+            settings.ao.layers = layers;
+            const FrameReadBack frame = render_and_read(test.scene, settings, loader);
+            INFO(test.what << ", " << layers << " layer(s)");
+            for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
+                CHECK(all_finite(*image));
+                CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
+                CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
+            }
+            for (const FloatImage& level : frame.inputs.pyramid) CHECK(all_finite(level));
+        }
     }
-  }
-  // Extreme parameters on the near-plane scene.
-  for (auto [radius, bias, intensity, q] : {std::tuple{1e6f, 0.0f, 1.0f, 1.0f}, std::tuple{1e-4f, 0.0f, 1.0f, 1.0f},
-                                            std::tuple{0.5f, 100.0f, 1.0f, 8.0f}, std::tuple{3.0f, 0.0f, 50.0f, 1e6f}}) {
-    RenderSettings settings = small_settings(161, 91);
-    settings.ao.radius = radius;
-    settings.ao.bias = bias;
-    settings.ao.intensity = intensity;
-    settings.ao.q = q;
-    const FrameReadBack frame = render_and_read(occluded_floor(true), settings, loader);
-    INFO("radius " << radius << ", bias " << bias << ", intensity " << intensity << ", q " << q);
-    for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
-      CHECK(all_finite(*image));
-      CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
-      CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
+    // Extreme parameters on the near-plane scene.
+    for (auto [radius, bias, intensity, q] :
+         {std::tuple{1e6f, 0.0f, 1.0f, 1.0f}, std::tuple{1e-4f, 0.0f, 1.0f, 1.0f},
+          std::tuple{0.5f, 100.0f, 1.0f, 8.0f}, std::tuple{3.0f, 0.0f, 50.0f, 1e6f}}) {
+        RenderSettings settings = small_settings(161, 91);
+        settings.ao.radius = radius;
+        settings.ao.bias = bias;
+        settings.ao.intensity = intensity;
+        settings.ao.q = q;
+        const FrameReadBack frame = render_and_read(occluded_floor(true), settings, loader);
+        INFO("radius " << radius << ", bias " << bias << ", intensity " << intensity << ", q "
+                       << q);
+        for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
+            CHECK(all_finite(*image));
+            CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
+            CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
+        }
     }
-  }
 
-  // The sky case really has sky, where visibility must be exactly 1.
-  RenderSettings settings = small_settings(160, 90);
-  const FrameReadBack frame = render_and_read(sky, settings, loader);
-  int sky_pixels = 0;
-  for (int y = 0; y < frame.raw.height; ++y) {
-    for (int x = 0; x < frame.raw.width; ++x) {
-      if (frame.inputs.pyramid[0].at(x, y, 0) > 0.0f) continue;
-      ++sky_pixels;
-      CHECK(frame.raw.at(x, y) == 1.0f);
+    // The sky case really has sky, where visibility must be exactly 1.
+    RenderSettings settings = small_settings(160, 90);
+    const FrameReadBack frame = render_and_read(sky, settings, loader);
+    int sky_pixels = 0;
+    for (int y = 0; y < frame.raw.height; ++y) {
+        for (int x = 0; x < frame.raw.width; ++x) {
+            if (frame.inputs.pyramid[0].at(x, y, 0) > 0.0f) continue;
+            ++sky_pixels;
+            CHECK(frame.raw.at(x, y) == 1.0f);
+        }
     }
-  }
-  CHECK(sky_pixels > 1000);
+    CHECK(sky_pixels > 1000);
 }
 
 }  // namespace
@@ -212,67 +221,73 @@ namespace deepgi::test {
 namespace {
 
 float srgb_encode(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  return c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    return c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
 TEST_CASE("compose multiplies the ambient term by the blurred visibility", "[compose]") {
-  HeadlessContext context;
-  const Scene scene = make_builtin_scene("cornell");
-  const RenderSettings settings = small_settings(160, 90);
-  Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-  renderer.render(scene.default_camera);
-  const FloatImage composed = renderer.read_pass_output("compose-radiance");
-  const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
-  const FloatImage emissive = renderer.read_pass_output("gbuffer-emissive-layer0");
-  const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
-  const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-  const FloatImage visibility = renderer.read_pass_output("ao-blurred");
-  int mismatches = 0;
-  int visibility_matters = 0;
-  for (int y = 0; y < composed.height; ++y) {
-    for (int x = 0; x < composed.width; ++x) {
-      if (depth.at(x, y) <= 0.0f) continue;
-      for (int c = 0; c < 3; ++c) {
-        const float ambient = scene.ambient[c] * albedo.at(x, y, c);
-        const float expected = direct.at(x, y, c) + emissive.at(x, y, c) + ambient * visibility.at(x, y);
-        // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
-        mismatches += std::abs(composed.at(x, y, c) - expected) > 0.035f * expected + 1e-5f;
-        visibility_matters += ambient * (1.0f - visibility.at(x, y)) > 0.1f * expected;
-      }
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    const RenderSettings settings = small_settings(160, 90);
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    renderer.render(scene.default_camera);
+    const FloatImage composed = renderer.read_pass_output("compose-radiance");
+    const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
+    const FloatImage emissive = renderer.read_pass_output("gbuffer-emissive-layer0");
+    const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
+    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+    const FloatImage visibility = renderer.read_pass_output("ao-blurred");
+    int mismatches = 0;
+    int visibility_matters = 0;
+    for (int y = 0; y < composed.height; ++y) {
+        for (int x = 0; x < composed.width; ++x) {
+            if (depth.at(x, y) <= 0.0f) continue;
+            for (int c = 0; c < 3; ++c) {
+                const float ambient = scene.ambient[c] * albedo.at(x, y, c);
+                const float expected =
+                    direct.at(x, y, c) + emissive.at(x, y, c) + ambient * visibility.at(x, y);
+                // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
+                mismatches += std::abs(composed.at(x, y, c) - expected) > 0.035f * expected + 1e-5f;
+                visibility_matters += ambient * (1.0f - visibility.at(x, y)) > 0.1f * expected;
+            }
+        }
     }
-  }
-  CHECK(mismatches == 0);
-  CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
+    CHECK(mismatches == 0);
+    CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
 }
 
 TEST_CASE("the ao-raw and ao-blurred debug views show the visibility", "[compose]") {
-  HeadlessContext context;
-  const Scene scene = make_builtin_scene("cornell");
-  for (auto [view, source] : {std::pair{DebugView::ao_raw, "ao-raw"}, std::pair{DebugView::ao_blurred, "ao-blurred"}}) {
-    RenderSettings settings = small_settings(160, 90);
-    settings.view = view;
-    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-    renderer.render(scene.default_camera);
-    const std::vector<std::uint8_t> shown = renderer.read_output_rgba8();
-    const FloatImage visibility = renderer.read_pass_output(source);
-    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-    const int guard = renderer.layout().guard;
-    int mismatches = 0;
-    int grey_levels = 0;
-    for (int y = 0; y < settings.height; ++y) {
-      for (int x = 0; x < settings.width; ++x) {
-        const bool surface = depth.at(x + guard, y + guard) > 0.0f;
-        const float expected = surface ? srgb_encode(visibility.at(x + guard, y + guard)) : 0.0f;
-        const float actual = float(shown[(std::size_t(y) * std::size_t(settings.width) + std::size_t(x)) * 4]) / 255.0f;
-        mismatches += std::abs(actual - expected) > 1.0f / 255.0f;
-        grey_levels += surface && expected < 0.9f;
-      }
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    for (auto [view, source] :
+         {std::pair{DebugView::ao_raw, "ao-raw"}, std::pair{DebugView::ao_blurred, "ao-blurred"}}) {
+        RenderSettings settings = small_settings(160, 90);
+        settings.view = view;
+        Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+        renderer.render(scene.default_camera);
+        const std::vector<std::uint8_t> shown = renderer.read_output_rgba8();
+        const FloatImage visibility = renderer.read_pass_output(source);
+        const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+        const int guard = renderer.layout().guard;
+        int mismatches = 0;
+        int grey_levels = 0;
+        for (int y = 0; y < settings.height; ++y) {
+            for (int x = 0; x < settings.width; ++x) {
+                const bool surface = depth.at(x + guard, y + guard) > 0.0f;
+                const float expected =
+                    surface ? srgb_encode(visibility.at(x + guard, y + guard)) : 0.0f;
+                const float actual =
+                    float(shown[(std::size_t(y) * std::size_t(settings.width) + std::size_t(x)) *
+                                4]) /
+                    255.0f;
+                mismatches += std::abs(actual - expected) > 1.0f / 255.0f;
+                grey_levels += surface && expected < 0.9f;
+            }
+        }
+        INFO(source);
+        CHECK(mismatches == 0);
+        CHECK(grey_levels > 100);
     }
-    INFO(source);
-    CHECK(mismatches == 0);
-    CHECK(grey_levels > 100);
-  }
 }
 
 }  // namespace

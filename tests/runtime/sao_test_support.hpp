@@ -21,111 +21,114 @@ namespace deepgi::test {
 
 // A fresh folder under the system temp dir, removed with everything in it.
 class TemporaryFolder {
- public:
-  TemporaryFolder() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() /
-            ("deepgi-sao-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::create_directories(path_);
-  }
-  ~TemporaryFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TemporaryFolder(const TemporaryFolder&) = delete;
-  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-  const std::filesystem::path& path() const { return path_; }
+public:
+    TemporaryFolder() {
+        static std::atomic<int> counter{0};
+        path_ = std::filesystem::temp_directory_path() /
+                ("deepgi-sao-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        std::filesystem::create_directories(path_);
+    }
+    ~TemporaryFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    TemporaryFolder(const TemporaryFolder&) = delete;
+    TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
 
- private:
-  std::filesystem::path path_;
+private:
+    std::filesystem::path path_;
 };
 
 // The build's loader with `override_dir` searched before the generated
 // headers, so a header written there replaces the build-time one.
 inline ShaderLoader loader_with_override(const std::filesystem::path& override_dir) {
-  auto dirs = ShaderLoader::from_build_configuration().include_dirs();
-  dirs.insert(dirs.begin() + 1, override_dir);
-  return ShaderLoader(dirs);
+    auto dirs = ShaderLoader::from_build_configuration().include_dirs();
+    dirs.insert(dirs.begin() + 1, override_dir);
+    return ShaderLoader(dirs);
 }
 
 inline void write_ao_header(const std::filesystem::path& dir, int taps, int tau) {
-  spiral::codegen::write_file_atomically(dir / "ao_taps.glsl",
-                                         spiral::codegen::make_gather_header("ao", taps, tau, {"sao test"}));
+    spiral::codegen::write_file_atomically(
+        dir / "ao_taps.glsl", spiral::codegen::make_gather_header("ao", taps, tau, {"sao test"}));
 }
 
-inline void write_blur_header(const std::filesystem::path& dir, int radius, std::optional<double> sigma = std::nullopt) {
-  spiral::codegen::write_file_atomically(
-      dir / "blur_kernel.glsl",
-      spiral::codegen::format_blur_header(spiral::codegen::gaussian_kernel(radius, sigma), {"sao test"}));
+inline void write_blur_header(const std::filesystem::path& dir, int radius,
+                              std::optional<double> sigma = std::nullopt) {
+    spiral::codegen::write_file_atomically(
+        dir / "blur_kernel.glsl",
+        spiral::codegen::format_blur_header(spiral::codegen::gaussian_kernel(radius, sigma),
+                                            {"sao test"}));
 }
 
 // The pattern of the build-time ao_taps.glsl, asked of the codegen library.
 inline std::vector<spiral::codegen::Tap> build_time_ao_taps() {
-  const int taps = SAO_TEST_AO_TAPS;
-  const int tau = SAO_TEST_AO_TAU != 0 ? SAO_TEST_AO_TAU : spiral::search(taps).tau;
-  return spiral::codegen::spiral_taps(taps, tau);
+    const int taps = SAO_TEST_AO_TAPS;
+    const int tau = SAO_TEST_AO_TAU != 0 ? SAO_TEST_AO_TAU : spiral::search(taps).tau;
+    return spiral::codegen::spiral_taps(taps, tau);
 }
 
 inline RenderSettings small_settings(int width, int height) {
-  RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.shadow_map_size = 64;
-  return settings;
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.shadow_map_size = 64;
+    return settings;
 }
 
 inline Camera camera_at_origin(float fov_degrees = 60.0f, float near_plane = 0.05f) {
-  Camera camera;
-  camera.vertical_fov = glm::radians(fov_degrees);
-  camera.near_plane = near_plane;
-  return camera;  // at the origin, looking down -Z
+    Camera camera;
+    camera.vertical_fov = glm::radians(fov_degrees);
+    camera.near_plane = near_plane;
+    return camera;  // at the origin, looking down -Z
 }
 
 // A white quad facing +Z at z = -distance, wide enough to fill any view.
 inline Scene camera_facing_plane(float distance) {
-  Scene scene;
-  scene.name = "test-plane";
-  SceneBuilder builder;
-  const int white = builder.add_material({0.8f, 0.8f, 0.8f});
-  const float extent = 100.0f * distance;
-  builder.add_quad({-extent, -extent, -distance}, {extent, -extent, -distance}, {extent, extent, -distance},
-                   {-extent, extent, -distance}, {0, 0, 1}, white);
-  builder.finish(scene);
-  scene.default_camera = camera_at_origin();
-  scene.camera_path.keys = {scene.default_camera};
-  return scene;
+    Scene scene;
+    scene.name = "test-plane";
+    SceneBuilder builder;
+    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+    const float extent = 100.0f * distance;
+    builder.add_quad({-extent, -extent, -distance}, {extent, -extent, -distance},
+                     {extent, extent, -distance}, {-extent, extent, -distance}, {0, 0, 1}, white);
+    builder.finish(scene);
+    scene.default_camera = camera_at_origin();
+    scene.camera_path.keys = {scene.default_camera};
+    return scene;
 }
 
 // A floor (y = -1) under a camera at the origin, with a wall and blocks on it,
 // some boxes hidden behind others so layer 1 has surfaces to offer; optionally
 // a quad just beyond the near plane.
 inline Scene occluded_floor(bool with_near_quad = false) {
-  Scene scene;
-  scene.name = "test-floor";
-  SceneBuilder builder;
-  const int white = builder.add_material({0.8f, 0.8f, 0.8f});
-  builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0}, white);
-  builder.add_quad({-20, -1, -6}, {20, -1, -6}, {20, 6, -6}, {-20, 6, -6}, {0, 0, 1}, white);
-  builder.add_box({-0.8f, -0.4f, -3.0f}, {0.5f, 0.6f, 0.5f}, white, 0.3f);
-  builder.add_box({-0.8f, -0.7f, -4.2f}, {0.3f, 0.3f, 0.3f}, white);  // partly behind the first box
-  builder.add_box({1.2f, -0.2f, -4.0f}, {0.3f, 0.8f, 0.3f}, white, -0.5f);
-  builder.add_box({1.0f, -0.8f, -5.0f}, {0.6f, 0.2f, 0.4f}, white);
-  if (with_near_quad) {
-    builder.add_quad({-0.2f, -0.2f, -0.06f}, {0.1f, -0.2f, -0.06f}, {0.1f, 0.1f, -0.051f}, {-0.2f, 0.1f, -0.051f},
-                     {0, 0, 1}, white);
-  }
-  builder.finish(scene);
-  scene.default_camera = camera_at_origin();
-  scene.default_camera.pitch = glm::radians(-15.0f);
-  scene.camera_path.keys = {scene.default_camera};
-  return scene;
+    Scene scene;
+    scene.name = "test-floor";
+    SceneBuilder builder;
+    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+    builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0}, white);
+    builder.add_quad({-20, -1, -6}, {20, -1, -6}, {20, 6, -6}, {-20, 6, -6}, {0, 0, 1}, white);
+    builder.add_box({-0.8f, -0.4f, -3.0f}, {0.5f, 0.6f, 0.5f}, white, 0.3f);
+    builder.add_box({-0.8f, -0.7f, -4.2f}, {0.3f, 0.3f, 0.3f},
+                    white);  // partly behind the first box
+    builder.add_box({1.2f, -0.2f, -4.0f}, {0.3f, 0.8f, 0.3f}, white, -0.5f);
+    builder.add_box({1.0f, -0.8f, -5.0f}, {0.6f, 0.2f, 0.4f}, white);
+    if (with_near_quad) {
+        builder.add_quad({-0.2f, -0.2f, -0.06f}, {0.1f, -0.2f, -0.06f}, {0.1f, 0.1f, -0.051f},
+                         {-0.2f, 0.1f, -0.051f}, {0, 0, 1}, white);
+    }
+    builder.finish(scene);
+    scene.default_camera = camera_at_origin();
+    scene.default_camera.pitch = glm::radians(-15.0f);
+    scene.camera_path.keys = {scene.default_camera};
+    return scene;
 }
 
 inline bool all_finite(const FloatImage& image) {
-  for (float value : image.pixels) {
-    if (!std::isfinite(value)) return false;
-  }
-  return true;
+    for (float value : image.pixels) {
+        if (!std::isfinite(value)) return false;
+    }
+    return true;
 }
 
 }  // namespace deepgi::test

@@ -18,142 +18,164 @@ namespace fs = std::filesystem;
 namespace {
 
 struct RunResult {
-  int status = -1;
-  std::string stderr_text;
+    int status = -1;
+    std::string stderr_text;
 };
 
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("deepgi_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
+    const fs::path dir =
+        fs::temp_directory_path() / ("deepgi_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir;
 }
 
 RunResult run_deepgi(const std::string& arguments) {
-  const fs::path errors = scratch() / "stderr.txt";
-  const std::string command = fmt::format("'{}' {} 2> '{}' > /dev/null", DEEPGI_EXECUTABLE, arguments, errors.string());
-  const int raw = std::system(command.c_str());
-  RunResult result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream stream(errors);
-  result.stderr_text.assign(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
-  return result;
+    const fs::path errors = scratch() / "stderr.txt";
+    const std::string command =
+        fmt::format("'{}' {} 2> '{}' > /dev/null", DEEPGI_EXECUTABLE, arguments, errors.string());
+    const int raw = std::system(command.c_str());
+    RunResult result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream stream(errors);
+    result.stderr_text.assign(std::istreambuf_iterator<char>(stream),
+                              std::istreambuf_iterator<char>());
+    return result;
 }
 
 std::string read_bytes(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+    std::ifstream stream(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
 }
 
 void require_one_line_error(const std::string& arguments, const std::string& expected_text) {
-  const fs::path output = scratch() / "must_not_exist.png";
-  fs::remove(output);
-  const RunResult result = run_deepgi(arguments + " --output '" + output.string() + "'");
-  INFO(arguments << " -> " << result.stderr_text);
-  REQUIRE(result.status == 2);
-  REQUIRE(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n') == 1);
-  REQUIRE(result.stderr_text.find(expected_text) != std::string::npos);
-  REQUIRE_FALSE(fs::exists(output));
+    const fs::path output = scratch() / "must_not_exist.png";
+    fs::remove(output);
+    const RunResult result = run_deepgi(arguments + " --output '" + output.string() + "'");
+    INFO(arguments << " -> " << result.stderr_text);
+    REQUIRE(result.status == 2);
+    REQUIRE(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n') == 1);
+    REQUIRE(result.stderr_text.find(expected_text) != std::string::npos);
+    REQUIRE_FALSE(fs::exists(output));
 }
 
 }  // namespace
 
 TEST_CASE("bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
-  require_one_line_error("--headless --size 0x90", "--size");
-  require_one_line_error("--headless --size big", "--size");
-  require_one_line_error("--headless --size 160x90 --generator delay", "--generator");
-  require_one_line_error("--headless --size 160x90 --min-separation -1", "--min-separation");
-  require_one_line_error("--headless --size 160x90 --frames 0", "--frames");
-  require_one_line_error("--headless --size 160x90 --no-such-option", "no-such-option");
-  require_one_line_error("--headless --size 160x90 --frames two", "--frames");
-  require_one_line_error("--headless --size 160x90 --view sideways", "--view");
+    require_one_line_error("--headless --size 0x90", "--size");
+    require_one_line_error("--headless --size big", "--size");
+    require_one_line_error("--headless --size 160x90 --generator delay", "--generator");
+    require_one_line_error("--headless --size 160x90 --min-separation -1", "--min-separation");
+    require_one_line_error("--headless --size 160x90 --frames 0", "--frames");
+    require_one_line_error("--headless --size 160x90 --no-such-option", "no-such-option");
+    require_one_line_error("--headless --size 160x90 --frames two", "--frames");
+    require_one_line_error("--headless --size 160x90 --view sideways", "--view");
 }
 
 TEST_CASE("bad scenes give a one-line error and exit status 2", "[runtime][cli]") {
-  const fs::path dir = scratch();
-  std::ofstream(dir / "broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ";
-  std::ofstream(dir / "empty.gltf") << R"({ "asset": { "version": "2.0" } })";
-  std::ofstream(dir / "lines.gltf")
-      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":24,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAA"}],)"
-      << R"("bufferViews":[{"buffer":0,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3","min":[0,0,0],"max":[1,0,0]}],)"
-      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
-  std::ofstream(dir / "scene.obj") << "v 0 0 0\n";
-  require_one_line_error("--headless --size 160x90 --scene no_such_scene", "unknown scene");
-  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "missing.gltf").string()), "does not exist");
-  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "broken.gltf").string()), "broken.gltf");
-  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "empty.gltf").string()), "no triangles");
-  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "lines.gltf").string()), "not supported");
-  require_one_line_error(fmt::format("--headless --size 160x90 --scene '{}'", (dir / "scene.obj").string()), "not glTF");
+    const fs::path dir = scratch();
+    std::ofstream(dir / "broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ";
+    std::ofstream(dir / "empty.gltf") << R"({ "asset": { "version": "2.0" } })";
+    std::ofstream(dir / "lines.gltf")
+        << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":24,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAA"}],)"
+        << R"("bufferViews":[{"buffer":0,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3","min":[0,0,0],"max":[1,0,0]}],)"
+        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+    std::ofstream(dir / "scene.obj") << "v 0 0 0\n";
+    require_one_line_error("--headless --size 160x90 --scene no_such_scene", "unknown scene");
+    require_one_line_error(
+        fmt::format("--headless --size 160x90 --scene '{}'", (dir / "missing.gltf").string()),
+        "does not exist");
+    require_one_line_error(
+        fmt::format("--headless --size 160x90 --scene '{}'", (dir / "broken.gltf").string()),
+        "broken.gltf");
+    require_one_line_error(
+        fmt::format("--headless --size 160x90 --scene '{}'", (dir / "empty.gltf").string()),
+        "no triangles");
+    require_one_line_error(
+        fmt::format("--headless --size 160x90 --scene '{}'", (dir / "lines.gltf").string()),
+        "not supported");
+    require_one_line_error(
+        fmt::format("--headless --size 160x90 --scene '{}'", (dir / "scene.obj").string()),
+        "not glTF");
 }
 
 TEST_CASE("an output directory that does not exist is an input error", "[runtime][cli]") {
-  const RunResult result = run_deepgi("--headless --size 16x9 --output /nonexistent-dir/out.png");
-  REQUIRE(result.status == 2);
-  REQUIRE(result.stderr_text.find("does not exist") != std::string::npos);
+    const RunResult result = run_deepgi("--headless --size 16x9 --output /nonexistent-dir/out.png");
+    REQUIRE(result.status == 2);
+    REQUIRE(result.stderr_text.find("does not exist") != std::string::npos);
 }
 
 TEST_CASE("the same command twice writes identical images", "[runtime][cli]") {
-  const fs::path dir = scratch();
-  for (const char* generator : {"peel", "reproject"}) {
-    const std::string common = fmt::format("--headless --scene atrium --size 160x90 --frames 3 --camera-path --generator {}", generator);
-    REQUIRE(run_deepgi(common + " --output '" + (dir / "first.png").string() + "'").status == 0);
-    REQUIRE(run_deepgi(common + " --output '" + (dir / "second.png").string() + "'").status == 0);
-    const std::string first = read_bytes(dir / "first.png");
-    REQUIRE(first.size() > 100);
-    REQUIRE(first == read_bytes(dir / "second.png"));
-  }
+    const fs::path dir = scratch();
+    for (const char* generator : {"peel", "reproject"}) {
+        const std::string common = fmt::format(
+            "--headless --scene atrium --size 160x90 --frames 3 --camera-path --generator {}",
+            generator);
+        REQUIRE(run_deepgi(common + " --output '" + (dir / "first.png").string() + "'").status ==
+                0);
+        REQUIRE(run_deepgi(common + " --output '" + (dir / "second.png").string() + "'").status ==
+                0);
+        const std::string first = read_bytes(dir / "first.png");
+        REQUIRE(first.size() > 100);
+        REQUIRE(first == read_bytes(dir / "second.png"));
+    }
 }
 
 TEST_CASE("the dump option writes every pass output as finite PFM images", "[runtime][cli]") {
-  const fs::path dir = scratch() / "dump";
-  fs::remove_all(dir);
-  const RunResult result = run_deepgi(fmt::format("--headless --scene cornell --size 161x91 --frames 2 --generator previous "
-                                                  "--output '{}' --dump '{}'", (scratch() / "dump.png").string(), dir.string()));
-  REQUIRE(result.status == 0);
-  int files = 0;
-  for (const char* name : {"gbuffer-depth-layer0", "gbuffer-depth-layer1", "gbuffer-normal-layer0", "gbuffer-normal-layer1",
-                           "gbuffer-albedo-layer0", "gbuffer-albedo-layer1", "gbuffer-emissive-layer0", "gbuffer-motion-layer0",
-                           "shadow-depth", "direct_light-radiance-layer0", "direct_light-radiance-layer1", "compose-radiance",
-                           "tonemap-colour"}) {
-    INFO(name);
-    const deepgi::FloatImage image = deepgi::read_pfm(dir / (std::string(name) + ".pfm"));
-    REQUIRE(deepgi::testing::all_finite(image));
-    ++files;
-  }
-  const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
-  REQUIRE(colour.width == 161);
-  REQUIRE(colour.height == 91);
-  REQUIRE(files == 13);
+    const fs::path dir = scratch() / "dump";
+    fs::remove_all(dir);
+    const RunResult result = run_deepgi(
+        fmt::format("--headless --scene cornell --size 161x91 --frames 2 --generator previous "
+                    "--output '{}' --dump '{}'",
+                    (scratch() / "dump.png").string(), dir.string()));
+    REQUIRE(result.status == 0);
+    int files = 0;
+    for (const char* name :
+         {"gbuffer-depth-layer0", "gbuffer-depth-layer1", "gbuffer-normal-layer0",
+          "gbuffer-normal-layer1", "gbuffer-albedo-layer0", "gbuffer-albedo-layer1",
+          "gbuffer-emissive-layer0", "gbuffer-motion-layer0", "shadow-depth",
+          "direct_light-radiance-layer0", "direct_light-radiance-layer1", "compose-radiance",
+          "tonemap-colour"}) {
+        INFO(name);
+        const deepgi::FloatImage image = deepgi::read_pfm(dir / (std::string(name) + ".pfm"));
+        REQUIRE(deepgi::testing::all_finite(image));
+        ++files;
+    }
+    const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
+    REQUIRE(colour.width == 161);
+    REQUIRE(colour.height == 91);
+    REQUIRE(files == 13);
 }
 
 TEST_CASE("a glTF file renders with its base colour factor and emissive", "[runtime][cli][gltf]") {
-  const fs::path dir = scratch();
-  // A 2 m square facing +z, no normals (flat normals are derived), one material.
-  std::ofstream(dir / "square.gltf")
-      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)"
-      << R"(AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMA"}],)"
-      << R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
-      << R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
-      << R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
-      << R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]},"emissiveFactor":[0.5,0.25,0]}],)"
-      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],)"
-      << R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
-  const fs::path dump = dir / "gltf_dump";
-  fs::remove_all(dump);
-  const RunResult result = run_deepgi(fmt::format("--headless --scene '{}' --size 64x48 --output '{}' --dump '{}'",
-                                                  (dir / "square.gltf").string(), (dir / "square.png").string(), dump.string()));
-  INFO(result.stderr_text);
-  REQUIRE(result.status == 0);
-  const deepgi::FloatImage albedo = deepgi::read_pfm(dump / "gbuffer-albedo-layer0.pfm");
-  const deepgi::FloatImage emissive = deepgi::read_pfm(dump / "gbuffer-emissive-layer0.pfm");
-  const deepgi::FloatImage normal = deepgi::read_pfm(dump / "gbuffer-normal-layer0.pfm");
-  const int x = albedo.width / 2;
-  const int y = albedo.height / 2;
-  // 8-bit sRGB storage: within half a code step.
-  REQUIRE(albedo.at(x, y, 0) == Approx(0.2).epsilon(0.02));
-  REQUIRE(albedo.at(x, y, 1) == Approx(0.4).epsilon(0.02));
-  REQUIRE(albedo.at(x, y, 2) == Approx(0.6).epsilon(0.02));
-  REQUIRE(emissive.at(x, y, 0) == Approx(0.5).epsilon(0.02));
-  REQUIRE(emissive.at(x, y, 1) == Approx(0.25).epsilon(0.02));
-  // The square faces the camera (pitched 15 degrees down): camera-space normal mostly +z.
-  REQUIRE(normal.at(x, y, 2) > 0.9f);
+    const fs::path dir = scratch();
+    // A 2 m square facing +z, no normals (flat normals are derived), one material.
+    std::ofstream(dir / "square.gltf")
+        << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)"
+        << R"(AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMA"}],)"
+        << R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
+        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
+        << R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+        << R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1]},"emissiveFactor":[0.5,0.25,0]}],)"
+        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],)"
+        << R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+    const fs::path dump = dir / "gltf_dump";
+    fs::remove_all(dump);
+    const RunResult result = run_deepgi(
+        fmt::format("--headless --scene '{}' --size 64x48 --output '{}' --dump '{}'",
+                    (dir / "square.gltf").string(), (dir / "square.png").string(), dump.string()));
+    INFO(result.stderr_text);
+    REQUIRE(result.status == 0);
+    const deepgi::FloatImage albedo = deepgi::read_pfm(dump / "gbuffer-albedo-layer0.pfm");
+    const deepgi::FloatImage emissive = deepgi::read_pfm(dump / "gbuffer-emissive-layer0.pfm");
+    const deepgi::FloatImage normal = deepgi::read_pfm(dump / "gbuffer-normal-layer0.pfm");
+    const int x = albedo.width / 2;
+    const int y = albedo.height / 2;
+    // 8-bit sRGB storage: within half a code step.
+    REQUIRE(albedo.at(x, y, 0) == Approx(0.2).epsilon(0.02));
+    REQUIRE(albedo.at(x, y, 1) == Approx(0.4).epsilon(0.02));
+    REQUIRE(albedo.at(x, y, 2) == Approx(0.6).epsilon(0.02));
+    REQUIRE(emissive.at(x, y, 0) == Approx(0.5).epsilon(0.02));
+    REQUIRE(emissive.at(x, y, 1) == Approx(0.25).epsilon(0.02));
+    // The square faces the camera (pitched 15 degrees down): camera-space normal mostly +z.
+    REQUIRE(normal.at(x, y, 2) > 0.9f);
 }

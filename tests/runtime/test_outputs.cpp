@@ -9,131 +9,143 @@
 using namespace deepgi;
 
 TEST_CASE("no NaN or Inf in any pass output, for every scene and generator", "[runtime][outputs]") {
-  HeadlessContext context;
-  for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
-    const Scene scene = make_builtin_scene(scene_name);
-    for (Generator generator : {Generator::peel, Generator::previous, Generator::reproject}) {
-      RenderSettings settings;
-      settings.width = 160;
-      settings.height = 90;
-      settings.generator = generator;
-      settings.shadow_map_size = 512;
-      Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-      for (int frame = 0; frame < 3; ++frame) renderer.render(camera_on_path(scene.camera_path, frame * 4));
-      for (const auto& name : renderer.pass_output_names()) {
-        INFO(scene_name << " " << to_string(generator) << " " << name);
-        REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
-      }
+    HeadlessContext context;
+    for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
+        const Scene scene = make_builtin_scene(scene_name);
+        for (Generator generator : {Generator::peel, Generator::previous, Generator::reproject}) {
+            RenderSettings settings;
+            settings.width = 160;
+            settings.height = 90;
+            settings.generator = generator;
+            settings.shadow_map_size = 512;
+            Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+            for (int frame = 0; frame < 3; ++frame)
+                renderer.render(camera_on_path(scene.camera_path, frame * 4));
+            for (const auto& name : renderer.pass_output_names()) {
+                INFO(scene_name << " " << to_string(generator) << " " << name);
+                REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
+            }
+        }
     }
-  }
 }
 
 TEST_CASE("odd and tiny sizes render with the right output size", "[runtime][outputs]") {
-  HeadlessContext context;
-  const Scene scene = make_builtin_scene("cornell");
-  for (auto [width, height] : {std::pair{1, 1}, {3, 2}, {161, 91}}) {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    for (auto [width, height] : {std::pair{1, 1}, {3, 2}, {161, 91}}) {
+        RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.shadow_map_size = 256;
+        Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+        renderer.render(scene.default_camera);
+        renderer.render(scene.default_camera);
+        const auto bytes = renderer.read_output_rgba8();
+        REQUIRE(bytes.size() == std::size_t(width) * std::size_t(height) * 4);
+        const FloatImage colour = renderer.read_pass_output("tonemap-colour");
+        REQUIRE(colour.width == width);
+        REQUIRE(colour.height == height);
+        const FrameLayout layout = renderer.layout();
+        const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+        REQUIRE(depth.width == layout.internal_width);
+        REQUIRE(depth.height == layout.internal_height);
+        // The centre of the default Cornell view is the back wall or a block.
+        REQUIRE(depth.at(layout.internal_width / 2, layout.internal_height / 2) > 1.0f);
+        for (const auto& name : renderer.pass_output_names())
+            REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
+    }
+}
+
+TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed (cornell spot)",
+          "[runtime][outputs]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.shadow_map_size = 256;
+    settings.width = 160;
+    settings.height = 90;
+    settings.shadow_map_size = 1024;
     Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
     renderer.render(scene.default_camera);
-    renderer.render(scene.default_camera);
-    const auto bytes = renderer.read_output_rgba8();
-    REQUIRE(bytes.size() == std::size_t(width) * std::size_t(height) * 4);
-    const FloatImage colour = renderer.read_pass_output("tonemap-colour");
-    REQUIRE(colour.width == width);
-    REQUIRE(colour.height == height);
-    const FrameLayout layout = renderer.layout();
     const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-    REQUIRE(depth.width == layout.internal_width);
-    REQUIRE(depth.height == layout.internal_height);
-    // The centre of the default Cornell view is the back wall or a block.
-    REQUIRE(depth.at(layout.internal_width / 2, layout.internal_height / 2) > 1.0f);
-    for (const auto& name : renderer.pass_output_names()) REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
-  }
+    const FloatImage normal = renderer.read_pass_output("gbuffer-normal-layer0");
+    const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
+    const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
+    const glm::mat4 view = camera_view_matrix(scene.default_camera);
+    const glm::vec3 light_position = glm::vec3(view * glm::vec4(scene.key_light.position, 1.0f));
+    const glm::vec3 spot_axis =
+        glm::normalize(glm::vec3(view * glm::vec4(scene.key_light.direction, 0.0f)));
+    int checked = 0;
+    for (int y = 0; y < depth.height; y += 3) {
+        for (int x = 0; x < depth.width; x += 3) {
+            const float d = depth.at(x, y);
+            if (d <= 0.0f) continue;
+            const glm::vec3 ray = deepgi::testing::camera_ray(scene.default_camera, settings,
+                                                              float(x) + 0.5f, float(y) + 0.5f);
+            const glm::vec3 position = ray * d;
+            const glm::vec3 n(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+            glm::vec3 to_light = light_position - position;
+            const float distance_squared = glm::dot(to_light, to_light);
+            to_light = glm::normalize(to_light);
+            const float cos_angle = glm::dot(-to_light, spot_axis);
+            const float inner = std::cos(scene.key_light.inner_cone);
+            if (cos_angle < inner)
+                continue;  // outside the cone's flat core: the smoothstep is not modelled here
+            const float cosine = std::max(glm::dot(n, to_light), 0.0f);
+            for (int c = 0; c < 3; ++c) {
+                const float expected = albedo.at(x, y, c) / 3.14159265f *
+                                       scene.key_light.colour[c] * scene.key_light.intensity *
+                                       cosine / distance_squared;
+                const float actual = direct.at(x, y, c);
+                // Shadowed pixels can only be darker; lit ones match within R11G11B10F precision.
+                REQUIRE(actual <= expected * 1.02f + 1e-3f);
+                if (expected > 0.01f && std::abs(actual - expected) <= 0.02f * expected) ++checked;
+            }
+        }
+    }
+    REQUIRE(checked > 100);
 }
 
-TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed (cornell spot)", "[runtime][outputs]") {
-  HeadlessContext context;
-  const Scene scene = make_builtin_scene("cornell");
-  RenderSettings settings;
-  settings.width = 160;
-  settings.height = 90;
-  settings.shadow_map_size = 1024;
-  Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-  renderer.render(scene.default_camera);
-  const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-  const FloatImage normal = renderer.read_pass_output("gbuffer-normal-layer0");
-  const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
-  const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
-  const glm::mat4 view = camera_view_matrix(scene.default_camera);
-  const glm::vec3 light_position = glm::vec3(view * glm::vec4(scene.key_light.position, 1.0f));
-  const glm::vec3 spot_axis = glm::normalize(glm::vec3(view * glm::vec4(scene.key_light.direction, 0.0f)));
-  int checked = 0;
-  for (int y = 0; y < depth.height; y += 3) {
-    for (int x = 0; x < depth.width; x += 3) {
-      const float d = depth.at(x, y);
-      if (d <= 0.0f) continue;
-      const glm::vec3 ray = deepgi::testing::camera_ray(scene.default_camera, settings, float(x) + 0.5f, float(y) + 0.5f);
-      const glm::vec3 position = ray * d;
-      const glm::vec3 n(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
-      glm::vec3 to_light = light_position - position;
-      const float distance_squared = glm::dot(to_light, to_light);
-      to_light = glm::normalize(to_light);
-      const float cos_angle = glm::dot(-to_light, spot_axis);
-      const float inner = std::cos(scene.key_light.inner_cone);
-      if (cos_angle < inner) continue;  // outside the cone's flat core: the smoothstep is not modelled here
-      const float cosine = std::max(glm::dot(n, to_light), 0.0f);
-      for (int c = 0; c < 3; ++c) {
-        const float expected = albedo.at(x, y, c) / 3.14159265f * scene.key_light.colour[c] * scene.key_light.intensity *
-                               cosine / distance_squared;
-        const float actual = direct.at(x, y, c);
-        // Shadowed pixels can only be darker; lit ones match within R11G11B10F precision.
-        REQUIRE(actual <= expected * 1.02f + 1e-3f);
-        if (expected > 0.01f && std::abs(actual - expected) <= 0.02f * expected) ++checked;
-      }
+TEST_CASE("motion vectors equal the CPU reprojection of layer-0 points into the previous camera",
+          "[runtime][outputs]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("atrium");
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.shadow_map_size = 256;
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    const Camera previous = camera_on_path(scene.camera_path, 40);
+    const Camera current = camera_on_path(scene.camera_path, 41);
+    renderer.render(previous);
+    renderer.render(current);
+    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+    const FloatImage motion = renderer.read_pass_output("gbuffer-motion-layer0");
+    const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(current));
+    const glm::mat4 previous_view_projection =
+        guard_band_projection(previous, settings) * camera_view_matrix(previous);
+    int checked = 0;
+    float largest = 0.0f;
+    for (int y = 0; y < depth.height; y += 2) {
+        for (int x = 0; x < depth.width; x += 2) {
+            const float d = depth.at(x, y);
+            if (d <= 0.0f) continue;
+            const glm::vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
+            const glm::vec3 camera_point =
+                deepgi::testing::camera_ray(current, settings, pixel.x, pixel.y) * d;
+            const glm::vec4 clip =
+                previous_view_projection * camera_to_world * glm::vec4(camera_point, 1.0f);
+            if (clip.w <= 0.0f) continue;
+            const glm::vec2 previous_pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) *
+                                             glm::vec2(float(depth.width), float(depth.height));
+            const glm::vec2 expected = pixel - previous_pixel;
+            const glm::vec2 actual(motion.at(x, y, 0), motion.at(x, y, 1));
+            INFO("pixel " << x << "," << y << " expected " << expected.x << "," << expected.y
+                          << " got " << actual.x << "," << actual.y);
+            REQUIRE(glm::length(actual - expected) <= 0.01f * glm::length(expected) + 0.05f);
+            largest = std::max(largest, glm::length(expected));
+            ++checked;
+        }
     }
-  }
-  REQUIRE(checked > 100);
-}
-
-TEST_CASE("motion vectors equal the CPU reprojection of layer-0 points into the previous camera", "[runtime][outputs]") {
-  HeadlessContext context;
-  const Scene scene = make_builtin_scene("atrium");
-  RenderSettings settings;
-  settings.width = 160;
-  settings.height = 90;
-  settings.shadow_map_size = 256;
-  Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-  const Camera previous = camera_on_path(scene.camera_path, 40);
-  const Camera current = camera_on_path(scene.camera_path, 41);
-  renderer.render(previous);
-  renderer.render(current);
-  const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-  const FloatImage motion = renderer.read_pass_output("gbuffer-motion-layer0");
-  const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(current));
-  const glm::mat4 previous_view_projection = guard_band_projection(previous, settings) * camera_view_matrix(previous);
-  int checked = 0;
-  float largest = 0.0f;
-  for (int y = 0; y < depth.height; y += 2) {
-    for (int x = 0; x < depth.width; x += 2) {
-      const float d = depth.at(x, y);
-      if (d <= 0.0f) continue;
-      const glm::vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
-      const glm::vec3 camera_point = deepgi::testing::camera_ray(current, settings, pixel.x, pixel.y) * d;
-      const glm::vec4 clip = previous_view_projection * camera_to_world * glm::vec4(camera_point, 1.0f);
-      if (clip.w <= 0.0f) continue;
-      const glm::vec2 previous_pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) *
-                                       glm::vec2(float(depth.width), float(depth.height));
-      const glm::vec2 expected = pixel - previous_pixel;
-      const glm::vec2 actual(motion.at(x, y, 0), motion.at(x, y, 1));
-      INFO("pixel " << x << "," << y << " expected " << expected.x << "," << expected.y << " got " << actual.x << "," << actual.y);
-      REQUIRE(glm::length(actual - expected) <= 0.01f * glm::length(expected) + 0.05f);
-      largest = std::max(largest, glm::length(expected));
-      ++checked;
-    }
-  }
-  REQUIRE(checked > 1000);
-  REQUIRE(largest > 0.5f);  // the camera really moved between the frames
+    REQUIRE(checked > 1000);
+    REQUIRE(largest > 0.5f);  // the camera really moved between the frames
 }

@@ -15,74 +15,89 @@ namespace fs = std::filesystem;
 namespace {
 
 struct TemporaryDirectory {
-  fs::path path;
-  TemporaryDirectory() {
-    path = fs::temp_directory_path() / ("deepgi_loader_test_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path / "shaders");
-    fs::create_directories(path / "generated");
-  }
-  ~TemporaryDirectory() { fs::remove_all(path); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path / name) << text; }
+    fs::path path;
+    TemporaryDirectory() {
+        path = fs::temp_directory_path() / ("deepgi_loader_test_" + std::to_string(::getpid()));
+        fs::remove_all(path);
+        fs::create_directories(path / "shaders");
+        fs::create_directories(path / "generated");
+    }
+    ~TemporaryDirectory() { fs::remove_all(path); }
+    void write(const std::string& name, const std::string& text) const {
+        std::ofstream(path / name) << text;
+    }
 };
 
 }  // namespace
 
-TEST_CASE("includes resolve from the shader and generated directories, once each", "[runtime][shader_loader]") {
-  TemporaryDirectory dir;
-  dir.write("shaders/main.frag", "#version 450 core\n#include \"common.glsl\"\n#include \"taps.glsl\"\nvoid main() {}\n");
-  dir.write("shaders/common.glsl", "#include \"taps.glsl\"\nconst float COMMON = 1.0;\n");
-  dir.write("generated/taps.glsl", "const int NUM_TAPS = 7;\n");
-  ShaderLoader loader({dir.path / "shaders", dir.path / "generated"});
-  const auto source = loader.expand("main.frag");
-  REQUIRE(source.text.rfind("#version 450 core\n", 0) == 0);
-  REQUIRE(source.text.find("NUM_TAPS") != std::string::npos);
-  // taps.glsl was included twice but appears once.
-  REQUIRE(source.text.find("NUM_TAPS") == source.text.rfind("NUM_TAPS"));
-  REQUIRE(source.files.size() == 3);
+TEST_CASE("includes resolve from the shader and generated directories, once each",
+          "[runtime][shader_loader]") {
+    TemporaryDirectory dir;
+    dir.write(
+        "shaders/main.frag",
+        "#version 450 core\n#include \"common.glsl\"\n#include \"taps.glsl\"\nvoid main() {}\n");
+    dir.write("shaders/common.glsl", "#include \"taps.glsl\"\nconst float COMMON = 1.0;\n");
+    dir.write("generated/taps.glsl", "const int NUM_TAPS = 7;\n");
+    ShaderLoader loader({dir.path / "shaders", dir.path / "generated"});
+    const auto source = loader.expand("main.frag");
+    REQUIRE(source.text.rfind("#version 450 core\n", 0) == 0);
+    REQUIRE(source.text.find("NUM_TAPS") != std::string::npos);
+    // taps.glsl was included twice but appears once.
+    REQUIRE(source.text.find("NUM_TAPS") == source.text.rfind("NUM_TAPS"));
+    REQUIRE(source.files.size() == 3);
 }
 
 TEST_CASE("a missing include names the including file and line", "[runtime][shader_loader]") {
-  TemporaryDirectory dir;
-  dir.write("shaders/main.frag", "#version 450 core\n\n#include \"absent.glsl\"\nvoid main() {}\n");
-  ShaderLoader loader({dir.path / "shaders"});
-  REQUIRE_THROWS_WITH(loader.expand("main.frag"), Catch::Contains("main.frag:3") && Catch::Contains("absent.glsl"));
+    TemporaryDirectory dir;
+    dir.write("shaders/main.frag",
+              "#version 450 core\n\n#include \"absent.glsl\"\nvoid main() {}\n");
+    ShaderLoader loader({dir.path / "shaders"});
+    REQUIRE_THROWS_WITH(loader.expand("main.frag"),
+                        Catch::Contains("main.frag:3") && Catch::Contains("absent.glsl"));
 }
 
-TEST_CASE("a compile error is reported against the included file and its line", "[runtime][shader_loader]") {
-  HeadlessContext context;
-  TemporaryDirectory dir;
-  dir.write("shaders/main.frag",
-            "#version 450 core\n#include \"helpers.glsl\"\nout vec4 colour;\nvoid main() {\n  colour = vec4(1.0);\n"
-            "  colour.x = undefined_in_main;\n}\n");
-  dir.write("generated/helpers.glsl", "// helpers\nfloat ok() { return 1.0; }\nfloat broken() { return nope; }\n");
-  ShaderLoader loader({dir.path / "shaders", dir.path / "generated"});
-  try {
-    loader.build_program({{GL_FRAGMENT_SHADER, "main.frag"}}, "#define UNUSED 1\n");
-    FAIL("the shader should not compile");
-  } catch (const GraphicsError& error) {
-    const std::string message = error.what();
-    INFO(message);
-    REQUIRE(message.find("helpers.glsl:3") != std::string::npos);
-  }
-  // The error in the main file, after an include and the inserted define, keeps its own line number.
-  dir.write("generated/helpers.glsl", "float ok() { return 1.0; }\n");
-  try {
-    loader.build_program({{GL_FRAGMENT_SHADER, "main.frag"}}, "#define UNUSED 1\n");
-    FAIL("the shader should not compile");
-  } catch (const GraphicsError& error) {
-    const std::string message = error.what();
-    INFO(message);
-    REQUIRE(message.find("main.frag:6") != std::string::npos);
-  }
+TEST_CASE("a compile error is reported against the included file and its line",
+          "[runtime][shader_loader]") {
+    HeadlessContext context;
+    TemporaryDirectory dir;
+    dir.write("shaders/main.frag",
+              "#version 450 core\n#include \"helpers.glsl\"\nout vec4 colour;\nvoid main() {\n  "
+              "colour = vec4(1.0);\n"
+              "  colour.x = undefined_in_main;\n}\n");
+    dir.write("generated/helpers.glsl",
+              "// helpers\nfloat ok() { return 1.0; }\nfloat broken() { return nope; }\n");
+    ShaderLoader loader({dir.path / "shaders", dir.path / "generated"});
+    try {
+        loader.build_program({{GL_FRAGMENT_SHADER, "main.frag"}}, "#define UNUSED 1\n");
+        FAIL("the shader should not compile");
+    } catch (const GraphicsError& error) {
+        const std::string message = error.what();
+        INFO(message);
+        REQUIRE(message.find("helpers.glsl:3") != std::string::npos);
+    }
+    // The error in the main file, after an include and the inserted define, keeps its own line
+    // number.
+    dir.write("generated/helpers.glsl", "float ok() { return 1.0; }\n");
+    try {
+        loader.build_program({{GL_FRAGMENT_SHADER, "main.frag"}}, "#define UNUSED 1\n");
+        FAIL("the shader should not compile");
+    } catch (const GraphicsError& error) {
+        const std::string message = error.what();
+        INFO(message);
+        REQUIRE(message.find("main.frag:6") != std::string::npos);
+    }
 }
 
 TEST_CASE("every shipped pass compiles", "[runtime][shader_loader]") {
-  HeadlessContext context;
-  const ShaderLoader loader = ShaderLoader::from_build_configuration();
-  REQUIRE_NOTHROW(loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_GEOMETRY_SHADER, "gbuffer.geom"},
-                                        {GL_FRAGMENT_SHADER, "gbuffer.frag"}}, "#define SINGLE_PASS 1\n"));
-  for (const char* fragment : {"direct_light.frag", "compose.frag", "tonemap.frag", "debug_view.frag"}) {
-    REQUIRE_NOTHROW(loader.build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}));
-  }
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    REQUIRE_NOTHROW(loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
+                                          {GL_GEOMETRY_SHADER, "gbuffer.geom"},
+                                          {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
+                                         "#define SINGLE_PASS 1\n"));
+    for (const char* fragment :
+         {"direct_light.frag", "compose.frag", "tonemap.frag", "debug_view.frag"}) {
+        REQUIRE_NOTHROW(loader.build_program(
+            {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}));
+    }
 }

@@ -13,73 +13,75 @@
 namespace deepgi::testing {
 
 struct RayHits {
-  float layer0 = 0.0f;  // linear camera depth, 0 for none
-  float layer1 = 0.0f;
-  int triangle0 = -1;
-  int triangle1 = -1;
+    float layer0 = 0.0f;  // linear camera depth, 0 for none
+    float layer1 = 0.0f;
+    int triangle0 = -1;
+    int triangle1 = -1;
 };
 
 // Camera-space ray through an internal (guard-banded) pixel position, with
 // z = -1 so the hit parameter t equals the linear camera depth.
-inline glm::vec3 camera_ray(const Camera& camera, const RenderSettings& settings, float px, float py) {
-  const FrameLayout layout = frame_layout(settings);
-  const glm::mat4 projection = guard_band_projection(camera, settings);
-  const float ndc_x = px / float(layout.internal_width) * 2.0f - 1.0f;
-  const float ndc_y = py / float(layout.internal_height) * 2.0f - 1.0f;
-  return {ndc_x / projection[0][0], ndc_y / projection[1][1], -1.0f};
+inline glm::vec3 camera_ray(const Camera& camera, const RenderSettings& settings, float px,
+                            float py) {
+    const FrameLayout layout = frame_layout(settings);
+    const glm::mat4 projection = guard_band_projection(camera, settings);
+    const float ndc_x = px / float(layout.internal_width) * 2.0f - 1.0f;
+    const float ndc_y = py / float(layout.internal_height) * 2.0f - 1.0f;
+    return {ndc_x / projection[0][0], ndc_y / projection[1][1], -1.0f};
 }
 
 // Front faces only (counter-clockwise), as the G-buffer culls back faces.
-inline RayHits ray_cast(const Scene& scene, const Camera& camera, const RenderSettings& settings, float px, float py,
-                        float min_separation) {
-  const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(camera));
-  const glm::vec3 origin = camera.position;
-  const glm::vec3 direction = glm::vec3(camera_to_world * glm::vec4(camera_ray(camera, settings, px, py), 0.0f));
-  std::vector<std::pair<float, int>> hits;
-  for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
-    const glm::vec3 a = scene.vertices[scene.indices[t]].position;
-    const glm::vec3 b = scene.vertices[scene.indices[t + 1]].position;
-    const glm::vec3 c = scene.vertices[scene.indices[t + 2]].position;
-    const glm::vec3 e1 = b - a;
-    const glm::vec3 e2 = c - a;
-    if (glm::dot(glm::cross(e1, e2), direction) >= 0.0f) continue;  // back face or edge-on
-    const glm::vec3 p = glm::cross(direction, e2);
-    const float determinant = glm::dot(e1, p);
-    const glm::vec3 s = origin - a;
-    const float u = glm::dot(s, p) / determinant;
-    if (u < 0.0f || u > 1.0f) continue;
-    const glm::vec3 q = glm::cross(s, e1);
-    const float v = glm::dot(direction, q) / determinant;
-    if (v < 0.0f || u + v > 1.0f) continue;
-    const float distance = glm::dot(e2, q) / determinant;
-    if (distance > camera.near_plane) hits.push_back({distance, int(t / 3)});
-  }
-  RayHits result;
-  float nearest = std::numeric_limits<float>::infinity();
-  for (auto [distance, triangle] : hits) {
-    if (distance < nearest) {
-      nearest = distance;
-      result.layer0 = distance;
-      result.triangle0 = triangle;
+inline RayHits ray_cast(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                        float px, float py, float min_separation) {
+    const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(camera));
+    const glm::vec3 origin = camera.position;
+    const glm::vec3 direction =
+        glm::vec3(camera_to_world * glm::vec4(camera_ray(camera, settings, px, py), 0.0f));
+    std::vector<std::pair<float, int>> hits;
+    for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+        const glm::vec3 a = scene.vertices[scene.indices[t]].position;
+        const glm::vec3 b = scene.vertices[scene.indices[t + 1]].position;
+        const glm::vec3 c = scene.vertices[scene.indices[t + 2]].position;
+        const glm::vec3 e1 = b - a;
+        const glm::vec3 e2 = c - a;
+        if (glm::dot(glm::cross(e1, e2), direction) >= 0.0f) continue;  // back face or edge-on
+        const glm::vec3 p = glm::cross(direction, e2);
+        const float determinant = glm::dot(e1, p);
+        const glm::vec3 s = origin - a;
+        const float u = glm::dot(s, p) / determinant;
+        if (u < 0.0f || u > 1.0f) continue;
+        const glm::vec3 q = glm::cross(s, e1);
+        const float v = glm::dot(direction, q) / determinant;
+        if (v < 0.0f || u + v > 1.0f) continue;
+        const float distance = glm::dot(e2, q) / determinant;
+        if (distance > camera.near_plane) hits.push_back({distance, int(t / 3)});
     }
-  }
-  if (result.triangle0 < 0) return result;
-  float second = std::numeric_limits<float>::infinity();
-  for (auto [distance, triangle] : hits) {
-    if (distance >= result.layer0 + min_separation && distance < second) {
-      second = distance;
-      result.layer1 = distance;
-      result.triangle1 = triangle;
+    RayHits result;
+    float nearest = std::numeric_limits<float>::infinity();
+    for (auto [distance, triangle] : hits) {
+        if (distance < nearest) {
+            nearest = distance;
+            result.layer0 = distance;
+            result.triangle0 = triangle;
+        }
     }
-  }
-  return result;
+    if (result.triangle0 < 0) return result;
+    float second = std::numeric_limits<float>::infinity();
+    for (auto [distance, triangle] : hits) {
+        if (distance >= result.layer0 + min_separation && distance < second) {
+            second = distance;
+            result.layer1 = distance;
+            result.triangle1 = triangle;
+        }
+    }
+    return result;
 }
 
 inline bool all_finite(const FloatImage& image) {
-  for (float value : image.pixels) {
-    if (!std::isfinite(value)) return false;
-  }
-  return true;
+    for (float value : image.pixels) {
+        if (!std::isfinite(value)) return false;
+    }
+    return true;
 }
 
 }  // namespace deepgi::testing

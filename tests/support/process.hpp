@@ -36,7 +36,8 @@ inline std::filesystem::path make_scratch_dir(const std::string& tag) {
 inline ProcessResult run_command(const std::string& command_line) {
     const auto dir = make_scratch_dir("spiral-run");
     const auto out = dir / "stdout", err = dir / "stderr";
-    const std::string full = command_line + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+    const std::string full =
+        command_line + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
     const int raw = std::system(full.c_str());
     ProcessResult result;
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

@@ -74,8 +74,8 @@ std::string macro_prefix(std::string_view pass_name);
 // float, which is what a shader stores.
 struct Tap {
     float alpha = 0;
-    float x = 0;   // alpha * cos(2 pi tau alpha)
-    float y = 0;   // alpha * sin(2 pi tau alpha)
+    float x = 0;  // alpha * cos(2 pi tau alpha)
+    float y = 0;  // alpha * sin(2 pi tau alpha)
 };
 
 // The n taps for (n, tau); requires n >= 1, tau >= 1 (throws
@@ -88,9 +88,9 @@ std::vector<Tap> spiral_taps(int n, int tau);
 // is what search(n) gives. When chosen.tau is not among optimum.ties the
 // header says so, with both exact discrepancies and the difference.
 struct GatherSpec {
-    std::string pass;        // free text; see macro_prefix
+    std::string pass;  // free text; see macro_prefix
     SearchResult optimum;
-    Discrepancy chosen;      // chosen.n must equal optimum.n
+    Discrepancy chosen;  // chosen.n must equal optimum.n
 };
 
 // The GLSL header text. Symbols, with P = macro_prefix(pass):

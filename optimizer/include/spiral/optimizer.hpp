@@ -25,11 +25,11 @@ inline constexpr int kMaxTaps = 65535;
 // the whole circle means "every angle except arc_start".
 struct Sector {
     bool closed = true;
-    std::int64_t radial_lo = 0;   // alpha * 2n
+    std::int64_t radial_lo = 0;  // alpha * 2n
     std::int64_t radial_hi = 0;
-    std::int64_t arc_start = 0;   // angle / (2 pi) * 2n
+    std::int64_t arc_start = 0;  // angle / (2 pi) * 2n
     std::int64_t arc_length = 0;
-    std::int64_t count = 0;       // taps inside (boundary included iff closed)
+    std::int64_t count = 0;  // taps inside (boundary included iff closed)
 
     std::int64_t width() const { return radial_hi - radial_lo; }
     // Weighted area times 4n^2.
@@ -39,8 +39,8 @@ struct Sector {
 struct Discrepancy {
     int n = 0;
     int tau = 0;
-    std::int64_t scaled = 0;      // K: D = K / (4 n^2)
-    Sector worst;                 // one sector attaining K
+    std::int64_t scaled = 0;  // K: D = K / (4 n^2)
+    Sector worst;             // one sector attaining K
 
     std::int64_t denominator() const { return 4 * std::int64_t{n} * n; }
     double value() const { return double(scaled) / double(denominator()); }
@@ -56,16 +56,16 @@ Discrepancy discrepancy_brute_force(int n, int tau);
 
 struct SearchResult {
     int n = 0;
-    int tau = 0;                  // smallest minimiser in [1, n]
-    std::vector<int> ties;        // every minimiser in [1, n], ascending
-    std::int64_t scaled = 0;      // K of the minimum
+    int tau = 0;              // smallest minimiser in [1, n]
+    std::vector<int> ties;    // every minimiser in [1, n], ascending
+    std::int64_t scaled = 0;  // K of the minimum
 
     std::int64_t denominator() const { return 4 * std::int64_t{n} * n; }
     double value() const { return double(scaled) / double(denominator()); }
 };
 
 struct SearchOptions {
-    int jobs = 0;                 // worker threads; 0 = all hardware threads
+    int jobs = 0;  // worker threads; 0 = all hardware threads
 };
 
 // The tau in [1, n] minimising D(n, tau). Exhaustive (branch and bound never

@@ -9,30 +9,30 @@ namespace deepgi::gl {
 
 template <void (*Destroy)(GLuint)>
 class Handle {
- public:
-  Handle() = default;
-  explicit Handle(GLuint name) : name_(name) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle(Handle&& other) noexcept : name_(std::exchange(other.name_, 0)) {}
-  Handle& operator=(Handle&& other) noexcept {
-    if (this != &other) {
-      reset();
-      name_ = std::exchange(other.name_, 0);
+public:
+    Handle() = default;
+    explicit Handle(GLuint name) : name_(name) {}
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    Handle(Handle&& other) noexcept : name_(std::exchange(other.name_, 0)) {}
+    Handle& operator=(Handle&& other) noexcept {
+        if (this != &other) {
+            reset();
+            name_ = std::exchange(other.name_, 0);
+        }
+        return *this;
     }
-    return *this;
-  }
-  ~Handle() { reset(); }
+    ~Handle() { reset(); }
 
-  GLuint get() const { return name_; }
-  explicit operator bool() const { return name_ != 0; }
-  void reset() {
-    if (name_ != 0) Destroy(name_);
-    name_ = 0;
-  }
+    GLuint get() const { return name_; }
+    explicit operator bool() const { return name_ != 0; }
+    void reset() {
+        if (name_ != 0) Destroy(name_);
+        name_ = 0;
+    }
 
- private:
-  GLuint name_ = 0;
+private:
+    GLuint name_ = 0;
 };
 
 void destroy_texture(GLuint name);

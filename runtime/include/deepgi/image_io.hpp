@@ -10,11 +10,13 @@ namespace deepgi {
 
 // Float image, rows bottom to top (GL and PFM order).
 struct FloatImage {
-  int width = 0;
-  int height = 0;
-  int channels = 1;  // 1 or 3
-  std::vector<float> pixels;
-  float at(int x, int y, int c = 0) const { return pixels[(std::size_t(y) * width + x) * channels + c]; }
+    int width = 0;
+    int height = 0;
+    int channels = 1;  // 1 or 3
+    std::vector<float> pixels;
+    float at(int x, int y, int c = 0) const {
+        return pixels[(std::size_t(y) * width + x) * channels + c];
+    }
 };
 
 // rgba8 rows bottom to top (GL order); written top to bottom as PNG expects.

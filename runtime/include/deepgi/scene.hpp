@@ -13,75 +13,75 @@
 namespace deepgi {
 
 struct Vertex {
-  glm::vec3 position;
-  glm::vec3 normal;
-  glm::vec2 uv;
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
 };
 
 struct Material {
-  glm::vec4 base_colour{1.0f};  // linear
-  glm::vec3 emissive{0.0f};     // linear radiance
-  int base_colour_texture = -1;  // index into Scene::textures, -1 for none
+    glm::vec4 base_colour{1.0f};   // linear
+    glm::vec3 emissive{0.0f};      // linear radiance
+    int base_colour_texture = -1;  // index into Scene::textures, -1 for none
 };
 
 struct TextureImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgba8;  // sRGB-encoded, rows top to bottom
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba8;  // sRGB-encoded, rows top to bottom
 };
 
 // A contiguous index range drawn with one material.
 struct DrawBatch {
-  std::uint32_t first_index = 0;
-  std::uint32_t index_count = 0;
-  int material = 0;
+    std::uint32_t first_index = 0;
+    std::uint32_t index_count = 0;
+    int material = 0;
 };
 
 struct Camera {
-  glm::vec3 position{0.0f};
-  float yaw = 0.0f;    // radians about +Y; 0 looks down -Z
-  float pitch = 0.0f;  // radians; positive looks up
-  float vertical_fov = glm::radians(60.0f);
-  float near_plane = 0.05f;
+    glm::vec3 position{0.0f};
+    float yaw = 0.0f;    // radians about +Y; 0 looks down -Z
+    float pitch = 0.0f;  // radians; positive looks up
+    float vertical_fov = glm::radians(60.0f);
+    float near_plane = 0.05f;
 };
 
 // Keys are visited in order and the path returns to the first; between keys
 // the camera moves with a smooth (C1) blend, so motion vectors stay moderate.
 struct CameraPath {
-  std::vector<Camera> keys;
-  int frames_per_key = 24;
+    std::vector<Camera> keys;
+    int frames_per_key = 24;
 };
 
 enum class LightKind { directional, spot };
 
 struct KeyLight {
-  LightKind kind = LightKind::directional;
-  glm::vec3 position{0.0f};          // spot only
-  glm::vec3 direction{0, -1, 0};     // unit, the way the light travels
-  glm::vec3 colour{1.0f};
-  float intensity = 3.0f;            // irradiance (directional) or W/sr-like intensity (spot)
-  float outer_cone = glm::radians(60.0f);  // spot half angles
-  float inner_cone = glm::radians(45.0f);
+    LightKind kind = LightKind::directional;
+    glm::vec3 position{0.0f};       // spot only
+    glm::vec3 direction{0, -1, 0};  // unit, the way the light travels
+    glm::vec3 colour{1.0f};
+    float intensity = 3.0f;  // irradiance (directional) or W/sr-like intensity (spot)
+    float outer_cone = glm::radians(60.0f);  // spot half angles
+    float inner_cone = glm::radians(45.0f);
 };
 
 struct Bounds {
-  glm::vec3 min{0.0f};
-  glm::vec3 max{0.0f};
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
 };
 
 struct Scene {
-  std::string name;
-  std::vector<Vertex> vertices;
-  std::vector<std::uint32_t> indices;  // triangles, counter-clockwise front faces
-  std::vector<DrawBatch> batches;
-  std::vector<Material> materials;
-  std::vector<TextureImage> textures;
-  Camera default_camera;
-  CameraPath camera_path;
-  KeyLight key_light;
-  glm::vec3 ambient{0.03f};     // constant fill until the radiosity pass exists
-  glm::vec3 background{0.0f};   // radiance where no surface is hit
-  Bounds bounds;
+    std::string name;
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;  // triangles, counter-clockwise front faces
+    std::vector<DrawBatch> batches;
+    std::vector<Material> materials;
+    std::vector<TextureImage> textures;
+    Camera default_camera;
+    CameraPath camera_path;
+    KeyLight key_light;
+    glm::vec3 ambient{0.03f};    // constant fill until the radiosity pass exists
+    glm::vec3 background{0.0f};  // radiance where no surface is hit
+    Bounds bounds;
 };
 
 std::vector<std::string> builtin_scene_names();

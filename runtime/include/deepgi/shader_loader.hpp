@@ -11,39 +11,40 @@
 namespace deepgi {
 
 struct ExpandedShaderSource {
-  std::string text;
-  // files[i] is the file the driver calls source string i in its log.
-  std::vector<std::string> files;
+    std::string text;
+    // files[i] is the file the driver calls source string i in its log.
+    std::vector<std::string> files;
 };
 
 struct ShaderStage {
-  GLenum type;
-  std::string file;  // relative to one of the include directories
+    GLenum type;
+    std::string file;  // relative to one of the include directories
 };
 
 class ShaderLoader {
- public:
-  // Searched in order; the first is where top-level shader files live.
-  explicit ShaderLoader(std::vector<std::filesystem::path> include_dirs);
+public:
+    // Searched in order; the first is where top-level shader files live.
+    explicit ShaderLoader(std::vector<std::filesystem::path> include_dirs);
 
-  // The directories the build configured: shaders/ and the generated headers.
-  static ShaderLoader from_build_configuration();
+    // The directories the build configured: shaders/ and the generated headers.
+    static ShaderLoader from_build_configuration();
 
-  // `defines` is inserted right after the #version line (one #define per line).
-  ExpandedShaderSource expand(const std::string& file, const std::string& defines = {}) const;
+    // `defines` is inserted right after the #version line (one #define per line).
+    ExpandedShaderSource expand(const std::string& file, const std::string& defines = {}) const;
 
-  // Compiles and links; throws GraphicsError with file:line messages on failure.
-  gl::Program build_program(const std::vector<ShaderStage>& stages,
-                            const std::string& defines = {}) const;
+    // Compiles and links; throws GraphicsError with file:line messages on failure.
+    gl::Program build_program(const std::vector<ShaderStage>& stages,
+                              const std::string& defines = {}) const;
 
-  const std::vector<std::filesystem::path>& include_dirs() const { return include_dirs_; }
+    const std::vector<std::filesystem::path>& include_dirs() const { return include_dirs_; }
 
- private:
-  std::filesystem::path resolve(const std::string& name, const std::filesystem::path& including_dir) const;
-  void expand_file(const std::filesystem::path& path, ExpandedShaderSource& out,
-                   std::vector<std::filesystem::path>& included, int depth) const;
+private:
+    std::filesystem::path resolve(const std::string& name,
+                                  const std::filesystem::path& including_dir) const;
+    void expand_file(const std::filesystem::path& path, ExpandedShaderSource& out,
+                     std::vector<std::filesystem::path>& included, int depth) const;
 
-  std::vector<std::filesystem::path> include_dirs_;
+    std::vector<std::filesystem::path> include_dirs_;
 };
 
 // Rewrites "0:12(3): error" (Mesa) and "0(12) : error" (NVIDIA) prefixes of a
