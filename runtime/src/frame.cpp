@@ -4,8 +4,8 @@
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/renderer.hpp"
-#include "pass_timer.hpp"
-#include "passes.hpp"
+#include "gl/pass_timer.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>

@@ -5,7 +5,7 @@
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
-#include "scene_builder.hpp"
+#include "scene/scene_builder.hpp"
 
 #include <spiral/codegen.hpp>
 #include <spiral/optimizer.hpp>

@@ -1,4 +1,4 @@
-#include "scene_builder.hpp"
+#include "scene/scene_builder.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "scene_gpu.hpp"
+#include "scene/scene_gpu.hpp"
 
 #include "shader_shared.hpp"
 

@@ -3,7 +3,7 @@
 // the .cpp file named after the pass; frame.cpp calls them in frame order.
 #include "deepgi/gl_objects.hpp"
 #include "deepgi/renderer.hpp"
-#include "scene_gpu.hpp"
+#include "scene/scene_gpu.hpp"
 
 namespace deepgi {
 

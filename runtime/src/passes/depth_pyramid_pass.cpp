@@ -1,7 +1,7 @@
 // Camera-space depth pyramid (design.md 3, step 2): compute shaders write one
 // MIP level at a time through image units, so no level is ever sampled while
 // it is being written.
-#include "passes.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <algorithm>

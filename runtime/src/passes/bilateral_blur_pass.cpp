@@ -2,7 +2,7 @@
 // intermediate texture, then a vertical draw into the output. The kernel is
 // the generated blur_kernel.glsl the shader loader finds.
 #include "deepgi/errors.hpp"
-#include "passes.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <cmath>

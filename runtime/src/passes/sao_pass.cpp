@@ -2,7 +2,7 @@
 // shader loader finds: the build's generated header in the renderer, a header
 // written at run time by the noise study and the tests.
 #include "deepgi/errors.hpp"
-#include "passes.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>

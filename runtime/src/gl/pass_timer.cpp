@@ -1,4 +1,4 @@
-#include "pass_timer.hpp"
+#include "gl/pass_timer.hpp"
 
 namespace deepgi {
 

@@ -1,4 +1,4 @@
-#include "passes.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,4 +1,4 @@
-#include "passes.hpp"
+#include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 namespace deepgi {
