@@ -18,3 +18,12 @@ if(DEEPGI_XVFB_RUN)
             -P ${CMAKE_CURRENT_LIST_DIR}/hidden_window_matches_egl.cmake)
   set_tests_properties(deepgi_hidden_window_matches_egl PROPERTIES LABELS runtime TIMEOUT 120)
 endif()
+
+# Every pixel of the final image and of every pass output, for every built-in
+# scene and generator, against hashes recorded before the passes were restructured.
+add_test(NAME deepgi_image_identity
+  COMMAND ${CMAKE_COMMAND} -DDEEPGI=$<TARGET_FILE:deepgi>
+          -DHASHES=${CMAKE_CURRENT_LIST_DIR}/image_identity_hashes.txt
+          -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/image_identity
+          -P ${CMAKE_CURRENT_LIST_DIR}/image_identity.cmake)
+set_tests_properties(deepgi_image_identity PROPERTIES LABELS runtime TIMEOUT 300)
