@@ -5,6 +5,7 @@
 #include "deepgi/gl_objects.hpp"
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,10 @@ public:
 
     const std::vector<std::filesystem::path>& include_dirs() const { return include_dirs_; }
 
+    // Programs built by this loader and every copy of it (copies share the
+    // count), so a test can see that a resize rebuilds nothing.
+    int programs_built() const { return *programs_built_; }
+
 private:
     std::filesystem::path resolve(const std::string& name,
                                   const std::filesystem::path& including_dir) const;
@@ -45,6 +50,7 @@ private:
                      std::vector<std::filesystem::path>& included, int depth) const;
 
     std::vector<std::filesystem::path> include_dirs_;
+    std::shared_ptr<int> programs_built_ = std::make_shared<int>(0);
 };
 
 // Rewrites "0:12(3): error" (Mesa) and "0(12) : error" (NVIDIA) prefixes of a

@@ -185,6 +185,7 @@ std::string map_shader_log(const std::string& log, const std::vector<std::string
 
 gl::Program ShaderLoader::build_program(const std::vector<ShaderStage>& stages,
                                         const std::string& defines) const {
+    ++*programs_built_;
     gl::Program program(glCreateProgram());
     std::vector<gl::Shader> shaders;
     for (const auto& stage : stages) {
