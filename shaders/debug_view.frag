@@ -30,19 +30,19 @@ vec3 view_colour(ivec2 pixel, int view) {
   if (view == DEEPGI_VIEW_ALBEDO_LAYER0 || view == DEEPGI_VIEW_ALBEDO_LAYER1)
     return srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
   if (view == DEEPGI_VIEW_EMISSIVE)
-    return filmic_tonemap(texelFetch(gbuffer_emissive, texel, 0).rgb * frame.parameters.y);
+    return filmic_tonemap(texelFetch(gbuffer_emissive, texel, 0).rgb * frame.exposure);
   if (view == DEEPGI_VIEW_MOTION) {
     vec2 motion = texelFetch(gbuffer_motion, texel, 0).xy;
     return vec3(clamp(0.5 + motion / 32.0, 0.0, 1.0), 0.5);
   }
   if (view == DEEPGI_VIEW_DEPTH_LAYER0 || view == DEEPGI_VIEW_DEPTH_LAYER1) {
     float depth = frame.camera_ray_scale.z / stored_depth;
-    return vec3(clamp(1.0 - depth / frame.parameters.w, 0.0, 1.0));
+    return vec3(clamp(1.0 - depth / frame.depth_view_range, 0.0, 1.0));
   }
-  return filmic_tonemap(texelFetch(direct_light, texel, 0).rgb * frame.parameters.y);
+  return filmic_tonemap(texelFetch(direct_light, texel, 0).rgb * frame.exposure);
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy) + ivec2(frame.layout_info.x);
-  out_colour = vec4(srgb_encode(view_colour(pixel, frame.options.y)), 1.0);
+  ivec2 pixel = ivec2(gl_FragCoord.xy) + ivec2(frame.guard_band);
+  out_colour = vec4(srgb_encode(view_colour(pixel, frame.debug_view)), 1.0);
 }

@@ -35,8 +35,8 @@ float reference_linear_depth(ivec2 pixel) {
 // Layer 1 keeps only fragments at least min-separation behind layer 0, compared
 // in linear camera depth (the hyperbolic encoding would make dz depth dependent).
 bool is_separated_from_layer0() {
-  float min_separation = frame.parameters.x;
-  if (frame.layout_info.w == DEEPGI_GENERATOR_REPROJECT) {
+  float min_separation = frame.min_separation;
+  if (frame.generator == DEEPGI_GENERATOR_REPROJECT) {
     // Where was this point last frame, and how far was layer 0 there?
     if (fragment_in.previous_clip.w <= 0.0) return false;
     vec2 previous_ndc = fragment_in.previous_clip.xy / fragment_in.previous_clip.w;

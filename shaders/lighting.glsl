@@ -7,7 +7,7 @@ layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
 // 3x3 PCF with hardware 2x2 comparison filtering: soft enough to hide texels,
 // cheap enough for llvmpipe.
 float shadow_visibility(vec3 camera_position, vec3 camera_normal) {
-  vec3 offset_position = camera_position + camera_normal * frame.parameters.z;
+  vec3 offset_position = camera_position + camera_normal * frame.shadow_normal_offset;
   vec4 clip = frame.camera_to_light_clip * vec4(offset_position, 1.0);
   if (clip.w <= 0.0) return 0.0;
   vec3 ndc = clip.xyz / clip.w;
@@ -25,7 +25,7 @@ float shadow_visibility(vec3 camera_position, vec3 camera_normal) {
 
 // Irradiance arriving at a surface facing the light, before the cosine and shadow.
 vec3 light_irradiance(vec3 camera_position, out vec3 to_light) {
-  if (frame.options.x == DEEPGI_LIGHT_DIRECTIONAL) {
+  if (frame.light_kind == DEEPGI_LIGHT_DIRECTIONAL) {
     to_light = frame.light_vector.xyz;
     return frame.light_radiance.rgb;
   }

@@ -1,46 +1,36 @@
 // Shared by the C++ host code (runtime/src/shader_shared.hpp) and the GLSL
-// passes, so binding points, enums and the per-frame uniform block have one
-// definition. Written in the common subset of both languages: #define and a
-// struct whose members are all 16-byte multiples, so std140 equals the C++
-// layout. No #include here: the C++ side provides mat4/vec4/ivec4 first.
+// passes, so binding points, enum values and the per-frame uniform block have
+// one definition. Written in the common subset of both languages: #define,
+// #include of another such file, and a struct laid out so that std140 equals
+// the C++ layout (checked by static_assert in shader_shared.hpp). The C++
+// side provides mat4/vec4/ivec4 before including this file.
 #ifndef DEEPGI_SHARED_CONSTANTS_H
 #define DEEPGI_SHARED_CONSTANTS_H
 
-#define DEEPGI_LAYER_COUNT 2
-
-#define DEEPGI_GENERATOR_PEEL 0
-#define DEEPGI_GENERATOR_PREVIOUS 1
-#define DEEPGI_GENERATOR_REPROJECT 2
-
-#define DEEPGI_LIGHT_DIRECTIONAL 0
-#define DEEPGI_LIGHT_SPOT 1
-
-#define DEEPGI_VIEW_FINAL 0
-#define DEEPGI_VIEW_NORMAL_LAYER0 1
-#define DEEPGI_VIEW_NORMAL_LAYER1 2
-#define DEEPGI_VIEW_ALBEDO_LAYER0 3
-#define DEEPGI_VIEW_ALBEDO_LAYER1 4
-#define DEEPGI_VIEW_EMISSIVE 5
-#define DEEPGI_VIEW_MOTION 6
-#define DEEPGI_VIEW_DEPTH_LAYER0 7
-#define DEEPGI_VIEW_DEPTH_LAYER1 8
-#define DEEPGI_VIEW_DIRECT_LAYER0 9
-#define DEEPGI_VIEW_DIRECT_LAYER1 10
+#include "shared_enums.h"
 
 // Uniform block binding points.
 #define DEEPGI_UBO_FRAME 0
 
-// Texture units.
+// Texture units (sampler bindings).
 #define DEEPGI_UNIT_GBUFFER_NORMAL 0
 #define DEEPGI_UNIT_GBUFFER_ALBEDO 1
 #define DEEPGI_UNIT_GBUFFER_EMISSIVE 2
 #define DEEPGI_UNIT_GBUFFER_MOTION 3
 #define DEEPGI_UNIT_GBUFFER_DEPTH 4
-#define DEEPGI_UNIT_REFERENCE_DEPTH 5
+#define DEEPGI_UNIT_REFERENCE_DEPTH 5  // layer-0 depth the second layer compares against
 #define DEEPGI_UNIT_SHADOW_MAP 6
 #define DEEPGI_UNIT_DIRECT_LIGHT 7
 #define DEEPGI_UNIT_COMPOSE 8
 #define DEEPGI_UNIT_BASE_COLOUR 9
+#define DEEPGI_UNIT_DEPTH_PYRAMID 10  // RG32F with MIPs: linear depth of layer 0 (R) and 1 (G); 0 = no surface
+#define DEEPGI_UNIT_AO 11             // ambient visibility (R), raw or blurred
+#define DEEPGI_UNIT_BLUR_SOURCE 12    // whatever the bilateral blur is smoothing
+#define DEEPGI_UNIT_AO_RAW 13         // debug view only
+
+// Image units (compute shaders).
+#define DEEPGI_IMAGE_PYRAMID_SOURCE 0
+#define DEEPGI_IMAGE_PYRAMID_DESTINATION 1
 
 // Vertex attribute locations.
 #define DEEPGI_ATTRIBUTE_POSITION 0
@@ -53,28 +43,20 @@
 #define DEEPGI_GBUFFER_OUTPUT_EMISSIVE 2
 #define DEEPGI_GBUFFER_OUTPUT_MOTION 3
 
-// Explicit uniform locations of per-draw values.
+// Explicit uniform locations of per-draw and per-pass values.
 #define DEEPGI_UNIFORM_BASE_COLOUR_FACTOR 0
 #define DEEPGI_UNIFORM_EMISSIVE_FACTOR 1
 #define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
 #define DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION 3
 #define DEEPGI_UNIFORM_LAYER 4
+#define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
+#define DEEPGI_UNIFORM_SAO_PARAMETERS 21   // vec4: world radius (m), bias (m), intensity, q (px)
+#define DEEPGI_UNIFORM_SAO_MAX_MIP 22      // int: deepest pyramid level a tap may read
+#define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
+#define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
 
-// ---- Deep SAO, depth pyramid and bilateral blur (issue 5) ----
-#define DEEPGI_VIEW_AO_RAW 11
-#define DEEPGI_VIEW_AO_BLURRED 12
-#define DEEPGI_UNIT_DEPTH_PYRAMID 10   // RG32F with MIPs: linear depth of layer 0 (R) and 1 (G); 0 = no surface
-#define DEEPGI_UNIT_AO 11              // ambient visibility (R), raw or blurred
-#define DEEPGI_UNIT_BLUR_SOURCE 12     // whatever the bilateral blur is smoothing
-#define DEEPGI_UNIT_AO_RAW 13          // debug view only
-#define DEEPGI_IMAGE_PYRAMID_SOURCE 0  // image units of the pyramid's compute shader
-#define DEEPGI_IMAGE_PYRAMID_DESTINATION 1
-#define DEEPGI_UNIFORM_PYRAMID_LEVEL 20      // int: the MIP level being written
-#define DEEPGI_UNIFORM_SAO_PARAMETERS 21     // vec4: world radius (m), bias (m), intensity, q (px)
-#define DEEPGI_UNIFORM_SAO_MAX_MIP 22        // int: deepest pyramid level a tap may read
-#define DEEPGI_UNIFORM_BLUR_DIRECTION 23     // ivec2: (1, 0) horizontal, (0, 1) vertical
-#define DEEPGI_UNIFORM_BLUR_PARAMETERS 24    // vec4: depth tolerance, normal power, plane tolerance, unused
-
+// Scalars are named fields, four to a 16-byte row, so std140 packs them
+// exactly as C++ does; the padding is explicit.
 struct FrameConstants {
   mat4 view;
   mat4 projection;  // guard-banded, reversed Z, infinite far plane
@@ -88,9 +70,21 @@ struct FrameConstants {
   vec4 ambient;               // rgb: constant fill radiance factor (times albedo)
   vec4 background;            // rgb: radiance where nothing is hit
   vec4 internal_size;         // (w, h, 1/w, 1/h) of the guard-banded buffers
-  vec4 parameters;            // x: min separation (m), y: exposure, z: shadow normal offset (m), w: depth view range (m)
-  ivec4 layout_info;          // x: guard band (px), y: viewport width, z: viewport height, w: generator
-  ivec4 options;              // x: light kind, y: debug view
+
+  float min_separation;        // m, layer 1 behind layer 0
+  float exposure;              // multiplier before the tonemap
+  float shadow_normal_offset;  // m along the normal before the shadow lookup
+  float depth_view_range;      // m, the depth debug view's white-to-black range
+
+  int guard_band;       // px on every side
+  int viewport_width;   // px
+  int viewport_height;  // px
+  int generator;        // DEEPGI_GENERATOR_*
+
+  int light_kind;  // DEEPGI_LIGHT_*
+  int debug_view;  // DEEPGI_VIEW_*
+  int padding0;
+  int padding1;
 };
 
 #endif

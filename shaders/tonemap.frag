@@ -9,7 +9,7 @@ layout(binding = DEEPGI_UNIT_COMPOSE) uniform sampler2D composed_radiance;
 layout(location = 0) out vec4 out_colour;
 
 void main() {
-  ivec2 source = ivec2(gl_FragCoord.xy) + ivec2(frame.layout_info.x);
+  ivec2 source = ivec2(gl_FragCoord.xy) + ivec2(frame.guard_band);
   vec3 radiance = texelFetch(composed_radiance, source, 0).rgb;
-  out_colour = vec4(srgb_encode(filmic_tonemap(radiance * frame.parameters.y)), 1.0);
+  out_colour = vec4(srgb_encode(filmic_tonemap(radiance * frame.exposure)), 1.0);
 }

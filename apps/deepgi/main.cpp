@@ -37,9 +37,11 @@ struct Options {
     std::string timing = "auto";
     bool camera_path = false;
     bool print_timings = false;
-    deepgi::AoSettings ao;  // deep SAO flags (--ao-*)
+    deepgi::AoSettings ao;
 };
 
+// Only the format; the range is checked with every other setting by
+// deepgi::validate().
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
     static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
     std::smatch match;
@@ -49,11 +51,6 @@ void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
     }
     settings.width = std::stoi(match[1].str());
     settings.height = std::stoi(match[2].str());
-    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
-        settings.height > 16384) {
-        throw deepgi::InputError(
-            fmt::format("--size {} is out of range (1 to 16384 per side)", text));
-    }
 }
 
 void check_output_path(const fs::path& output) {
@@ -66,39 +63,18 @@ void check_output_path(const fs::path& output) {
         throw deepgi::InputError(fmt::format("--output '{}' is a directory", output.string()));
 }
 
+// Parses text into settings; every check is deepgi::validate()'s.
 deepgi::RenderSettings settings_from(const Options& options) {
     deepgi::RenderSettings settings;
     parse_size(options.size, settings);
-    const auto generator = deepgi::parse_generator(options.generator);
-    if (!generator)
-        throw deepgi::InputError(fmt::format(
-            "--generator '{}' is not one of peel, previous, reproject", options.generator));
-    settings.generator = *generator;
-    const auto view = deepgi::parse_debug_view(options.view);
-    if (!view)
-        throw deepgi::InputError(
-            fmt::format("--view '{}' is not a debug view (see --help)", options.view));
-    settings.view = *view;
-    if (!(options.min_separation >= 0.0f) || !std::isfinite(options.min_separation)) {
-        throw deepgi::InputError("--min-separation must be a finite number of metres >= 0");
-    }
+    settings.generator = deepgi::parse_generator("--generator", options.generator);
+    settings.view = deepgi::parse_debug_view("--view", options.view);
+    settings.timing = deepgi::parse_timing_mode("--timing", options.timing);
     settings.min_separation = options.min_separation;
-    if (!(options.exposure > 0.0f) || !std::isfinite(options.exposure))
-        throw deepgi::InputError("--exposure must be > 0");
     settings.exposure = options.exposure;
-    if (!(options.guard_band >= 0.0f && options.guard_band <= 1.0f))
-        throw deepgi::InputError("--guard-band must be in [0, 1]");
     settings.guard_band_fraction = options.guard_band;
-    if (options.timing == "auto")
-        settings.timing = deepgi::TimingMode::automatic;
-    else if (options.timing == "cpu")
-        settings.timing = deepgi::TimingMode::cpu;
-    else if (options.timing == "gpu")
-        settings.timing = deepgi::TimingMode::gpu;
-    else
-        throw deepgi::InputError(
-            fmt::format("--timing '{}' is not one of auto, cpu, gpu", options.timing));
     settings.ao = options.ao;
+    deepgi::validate(settings);
     return settings;
 }
 
@@ -151,25 +127,23 @@ int main(int argc, char** argv) {
     app.add_option("--frames", options.frames, "Frames to render before writing the output");
     app.add_option("--output", options.output, "PNG file to write (headless)");
     app.add_option("--generator", options.generator,
-                   "Deep G-buffer generator: peel, previous, reproject");
+                   "Deep G-buffer generator: " + deepgi::enum_name_list<deepgi::Generator>());
     app.add_option("--min-separation", options.min_separation,
                    "Minimum camera-space distance of layer 1 behind layer 0 (m)");
     app.add_option("--exposure", options.exposure, "Exposure multiplier before the tonemap");
     app.add_option("--guard-band", options.guard_band,
                    "Guard band on every side, as a fraction of the height");
-    app.add_option("--view", options.view,
-                   "final, normal-layer0/1, albedo-layer0/1, emissive, motion, depth-layer0/1, "
-                   "direct-layer0/1, "
-                   "ao-raw, ao-blurred");
+    app.add_option("--view", options.view, deepgi::enum_name_list<deepgi::DebugView>());
     app.add_option("--dump", options.dump,
                    "Directory for 32-bit float PFM images of every pass output (headless)");
     app.add_option("--timing", options.timing,
-                   "Pass timing: auto, cpu (glFinish + clock), gpu (timer queries)");
+                   "Pass timing: " + deepgi::enum_name_list<deepgi::TimingMode>() +
+                       " (cpu: glFinish and a CPU clock; gpu: timer queries)");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
                  "Print the last frame's per-pass milliseconds");
-    // Deep SAO (docs/deep-sao.md); values are checked by the renderer.
+    // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-layers", options.ao.layers,
                    "Deep SAO: G-buffer layers the taps test, 1 or 2")
         ->capture_default_str();

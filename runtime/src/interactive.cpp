@@ -83,6 +83,27 @@ void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
 }
 
+// The enum `steps` rows further along its name table, wrapping around.
+template <class Enum>
+Enum step_enum(Enum value, int steps) {
+    const auto table = enum_names(Enum{});
+    const int count = int(table.size());
+    int current = 0;
+    for (int i = 0; i < count; ++i)
+        if (table[std::size_t(i)].value == value) current = i;
+    return table[std::size_t(((current + steps) % count + count) % count)].value;
+}
+
+// A combo box over an enum's name table.
+template <class Enum>
+void enum_combo(const char* label, Enum& value) {
+    if (!ImGui::BeginCombo(label, std::string(to_string(value)).c_str())) return;
+    for (const auto& row : enum_names(Enum{})) {
+        if (ImGui::Selectable(std::string(row.name).c_str(), row.value == value)) value = row.value;
+    }
+    ImGui::EndCombo();
+}
+
 }  // namespace
 
 int run_interactive(const std::string& scene_name, const RenderSettings& initial_settings) {
@@ -127,20 +148,10 @@ int run_interactive(const std::string& scene_name, const RenderSettings& initial
         update_fly_camera(window, fly, seconds, 0.25f * scene_size);
 
         RenderSettings wanted = settings;
-        const auto& views = all_debug_views();
-        if (key_events.view_steps != 0) {
-            const int count = int(views.size());
-            const int current =
-                int(std::find(views.begin(), views.end(), wanted.view) - views.begin());
-            wanted.view =
-                views[std::size_t(((current + key_events.view_steps) % count + count) % count)];
-            key_events.view_steps = 0;
-        }
-        if (key_events.generator_steps != 0) {
-            wanted.generator =
-                static_cast<Generator>((int(wanted.generator) + key_events.generator_steps) % 3);
-            key_events.generator_steps = 0;
-        }
+        wanted.view = step_enum(wanted.view, key_events.view_steps);
+        wanted.generator = step_enum(wanted.generator, key_events.generator_steps);
+        key_events.view_steps = 0;
+        key_events.generator_steps = 0;
 
         ImGui::Begin("deepgi");
         {
@@ -162,20 +173,11 @@ int run_interactive(const std::string& scene_name, const RenderSettings& initial
                 ImGui::EndCombo();
             }
         }
-        int generator = int(wanted.generator);
-        ImGui::Combo("generator (G)", &generator, "peel\0previous\0reproject\0");
-        wanted.generator = static_cast<Generator>(generator);
+        enum_combo("generator (G)", wanted.generator);
         ImGui::SliderFloat("min separation (m)", &wanted.min_separation, 0.0f, 2.0f);
         ImGui::SliderFloat("exposure", &wanted.exposure, 0.05f, 8.0f, "%.2f",
                            ImGuiSliderFlags_Logarithmic);
-        int view = int(std::find(views.begin(), views.end(), wanted.view) - views.begin());
-        if (ImGui::BeginCombo("view (V)", std::string(to_string(wanted.view)).c_str())) {
-            for (std::size_t i = 0; i < views.size(); ++i) {
-                if (ImGui::Selectable(std::string(to_string(views[i])).c_str(), int(i) == view))
-                    wanted.view = views[i];
-            }
-            ImGui::EndCombo();
-        }
+        enum_combo("view (V)", wanted.view);
         if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
             ImGui::SliderFloat("intensity", &scene.key_light.intensity, 0.0f, 50.0f);
             ImGui::ColorEdit3("colour", &scene.key_light.colour.x);

@@ -75,10 +75,11 @@ std::vector<float> run_blur(const ShaderLoader& loader, const Guide& guide,
     glTextureSubImage2D(input.get(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, source.data());
     gl::VertexArray empty = gl::create_vertex_array();
 
-    const BilateralBlurPass pass = create_bilateral_blur_pass(loader, w, h, GL_R32F, parameters);
-    run_bilateral_blur_pass(pass, input.get(), depth.get(), normal.get(), empty.get());
+    BilateralBlur blur = create_bilateral_blur(loader, parameters);
+    resize_bilateral_blur(blur, w, h, GL_R32F);
+    run_bilateral_blur(blur, input.get(), depth.get(), normal.get(), empty.get());
     std::vector<float> output(source.size());
-    glGetTextureImage(pass.output.get(), 0, GL_RED, GL_FLOAT,
+    glGetTextureImage(blur.output.get(), 0, GL_RED, GL_FLOAT,
                       GLsizei(output.size() * sizeof(float)), output.data());
     return output;
 }

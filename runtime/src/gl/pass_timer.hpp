@@ -29,11 +29,18 @@ private:
     std::chrono::steady_clock::time_point started_;
 };
 
-// Times one pass for the duration of a scope.
+// Times one pass for the duration of a scope, inside a GL debug group of the
+// same name so a RenderDoc or apitrace capture reads like the timer table.
 class ScopedPass {
 public:
-    ScopedPass(PassTimer& timer, const std::string& pass) : timer_(timer) { timer_.begin(pass); }
-    ~ScopedPass() { timer_.end(); }
+    ScopedPass(PassTimer& timer, const std::string& pass) : timer_(timer) {
+        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, pass.c_str());
+        timer_.begin(pass);
+    }
+    ~ScopedPass() {
+        timer_.end();
+        glPopDebugGroup();
+    }
     ScopedPass(const ScopedPass&) = delete;
     ScopedPass& operator=(const ScopedPass&) = delete;
 

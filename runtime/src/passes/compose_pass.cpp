@@ -1,35 +1,58 @@
+// Layer-0 outgoing radiance: direct light, ambient times the blurred deep SAO
+// visibility, and emissive (design.md 3, step 8).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 namespace deepgi {
 
-ComposePass create_compose_pass(const ShaderLoader& loader, int width, int height) {
-    ComposePass pass;
-    pass.width = width;
-    pass.height = height;
-    pass.program = loader.build_program(
-        {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "compose.frag"}});
-    pass.radiance = gl::create_texture_2d(GL_R11F_G11F_B10F, width, height);
-    pass.framebuffer = gl::create_framebuffer();
-    glNamedFramebufferTexture(pass.framebuffer.get(), GL_COLOR_ATTACHMENT0, pass.radiance.get(), 0);
-    gl::check_framebuffer(pass.framebuffer, "compose");
-    return pass;
-}
+namespace {
 
-void run_compose_pass(const ComposePass& pass, const GBufferTargets& gbuffer,
-                      const DirectLightPass& direct, GLuint ambient_visibility,
-                      GLuint empty_vertex_array) {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glViewport(0, 0, pass.width, pass.height);
-    glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, direct.radiance.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, gbuffer.albedo.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, gbuffer.emissive.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, gbuffer.depth.get());
-    glBindTextureUnit(DEEPGI_UNIT_AO, ambient_visibility);
-    glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.get());
-    glUseProgram(pass.program.get());
-    draw_fullscreen_triangle(empty_vertex_array);
+class ComposePass final : public Pass {
+public:
+    explicit ComposePass(const ShaderLoader& loader)
+        : program_(build_fullscreen_program(loader, "compose.frag")) {}
+
+    std::string_view name() const override { return "compose"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        radiance_ = gl::create_texture_2d(GL_R11F_G11F_B10F, width_, height_);
+        label_texture(radiance_, name(), "radiance");
+        framebuffer_ = framebuffer_for(radiance_, "compose");
+    }
+
+    void run(FrameResources& frame) override {
+        begin_fullscreen(framebuffer_.get(), width_, height_);
+        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+        glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
+        glUseProgram(program_.get());
+        draw_fullscreen_triangle(frame.empty_vertex_array);
+        frame.publish("compose.radiance", radiance_.get());
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        return {{.name = "compose-radiance",
+                 .texture = radiance_.get(),
+                 .width = width_,
+                 .height = height_}};
+    }
+
+private:
+    gl::Program program_;
+    gl::Texture radiance_;  // R11F_G11F_B10F
+    gl::Framebuffer framebuffer_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<ComposePass>(loader);
 }
 
 }  // namespace deepgi

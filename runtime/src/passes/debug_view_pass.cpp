@@ -1,32 +1,54 @@
+// One intermediate texture shown instead of the final image, written into the
+// display image so the window and --output have one image either way.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 namespace deepgi {
 
-DebugViewPass create_debug_view_pass(const ShaderLoader& loader) {
-    DebugViewPass pass;
-    pass.program = loader.build_program(
-        {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "debug_view.frag"}});
-    return pass;
-}
+namespace {
 
-void run_debug_view_pass(const DebugViewPass& pass, const GBufferTargets& gbuffer,
-                         const DirectLightPass& direct, GLuint ao_raw, GLuint ao_blurred,
-                         const TonemapPass& output, GLuint empty_vertex_array) {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glViewport(0, 0, output.width, output.height);
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, gbuffer.normal.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, gbuffer.albedo.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, gbuffer.emissive.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, gbuffer.motion.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, gbuffer.depth.get());
-    glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, direct.radiance.get());
-    glBindTextureUnit(DEEPGI_UNIT_AO_RAW, ao_raw);
-    glBindTextureUnit(DEEPGI_UNIT_AO, ao_blurred);
-    glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer.get());
-    glUseProgram(pass.program.get());
-    draw_fullscreen_triangle(empty_vertex_array);
+class DebugViewPass final : public Pass {
+public:
+    explicit DebugViewPass(const ShaderLoader& loader)
+        : program_(build_fullscreen_program(loader, "debug_view.frag")) {}
+
+    std::string_view name() const override { return "debug_view"; }
+    void resize(FrameResources&) override {}
+    bool enabled(const RenderSettings& settings) const override {
+        return settings.view != DebugView::final_image;
+    }
+
+    void run(FrameResources& frame) override {
+        begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
+                         frame.settings->height);
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+        glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
+        glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
+        glUseProgram(program_.get());
+        draw_fullscreen_triangle(frame.empty_vertex_array);
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources& frame) const override {
+        return {{.name = "debug_view-colour",
+                 .texture = frame.display.get(),
+                 .width = frame.settings->width,
+                 .height = frame.settings->height,
+                 .decode = OutputDecode::unorm_rgb}};
+    }
+
+private:
+    gl::Program program_;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<DebugViewPass>(loader);
 }
 
 }  // namespace deepgi

@@ -1,8 +1,11 @@
 // Camera-space depth pyramid (design.md 3, step 2): compute shaders write one
 // MIP level at a time through image units, so no level is ever sampled while
-// it is being written.
+// it is being written. RG32F: linear depth of layer 0 (R) and 1 (G), 0 = no
+// surface; min(max_mip_level, floor(log2(max(width, height)))) + 1 levels.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <bit>
@@ -22,65 +25,79 @@ void dispatch_over(int width, int height) {
                       GLuint((height + group_size - 1) / group_size), 1);
 }
 
+class DepthPyramidPass final : public Pass {
+public:
+    explicit DepthPyramidPass(const ShaderLoader& loader)
+        : base_level_(loader.build_program({{GL_COMPUTE_SHADER, "depth_pyramid.comp"}},
+                                           "#define PYRAMID_BASE_LEVEL 1\n")),
+          reduce_(loader.build_program({{GL_COMPUTE_SHADER, "depth_pyramid.comp"}})) {}
+
+    std::string_view name() const override { return "depth_pyramid"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        const int deepest_possible =
+            std::bit_width(unsigned(std::max(width_, height_))) - 1;  // floor(log2)
+        levels_ = std::clamp(frame.settings->ao.max_mip_level, 0, deepest_possible) + 1;
+        pyramid_ = gl::create_texture(GL_TEXTURE_2D);
+        label_texture(pyramid_, name(), "linear depth");
+        glTextureStorage2D(pyramid_.get(), levels_, GL_RG32F, width_, height_);
+        glTextureParameteri(pyramid_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTextureParameteri(pyramid_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(pyramid_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(pyramid_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+
+    void run(FrameResources& frame) override {
+        const GLuint pyramid = pyramid_.get();
+        glUseProgram(base_level_.get());
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+        glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RG32F);
+        dispatch_over(width_, height_);
+
+        glUseProgram(reduce_.get());
+        for (int level = 1; level < levels_; ++level) {
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glBindImageTexture(DEEPGI_IMAGE_PYRAMID_SOURCE, pyramid, level - 1, GL_FALSE, 0,
+                               GL_READ_ONLY, GL_RG32F);
+            glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, level, GL_FALSE, 0,
+                               GL_WRITE_ONLY, GL_RG32F);
+            dispatch_over(level_extent(width_, level), level_extent(height_, level));
+        }
+        // Later passes sample the pyramid with texelFetch; tests read it back.
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        frame.publish("depth_pyramid", pyramid);
+        // The deepest level a tap may read.
+        frame.publish_int("depth_pyramid.max_level", levels_ - 1);
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        std::vector<PassOutput> list;
+        for (int level = 0; level < levels_; ++level)
+            list.push_back({.name = fmt::format("depth_pyramid-level{}", level),
+                            .texture = pyramid_.get(),
+                            .level = level,
+                            .width = level_extent(width_, level),
+                            .height = level_extent(height_, level),
+                            .decode = OutputDecode::floats_rg_as_rgb});
+        return list;
+    }
+
+private:
+    gl::Program base_level_;  // level 0 from the G-buffer depth
+    gl::Program reduce_;      // level m + 1 from level m
+    gl::Texture pyramid_;
+    int width_ = 0;
+    int height_ = 0;
+    int levels_ = 0;
+};
+
 }  // namespace
 
-DepthPyramidPass create_depth_pyramid_pass(const ShaderLoader& loader, int width, int height,
-                                           int max_level) {
-    DepthPyramidPass pass;
-    pass.width = width;
-    pass.height = height;
-    const int deepest_possible =
-        std::bit_width(unsigned(std::max(width, height))) - 1;  // floor(log2)
-    pass.levels = std::clamp(max_level, 0, deepest_possible) + 1;
-    pass.base_level = loader.build_program({{GL_COMPUTE_SHADER, "depth_pyramid.comp"}},
-                                           "#define PYRAMID_BASE_LEVEL 1\n");
-    pass.reduce = loader.build_program({{GL_COMPUTE_SHADER, "depth_pyramid.comp"}});
-    pass.pyramid = gl::create_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(pass.pyramid.get(), pass.levels, GL_RG32F, width, height);
-    glTextureParameteri(pass.pyramid.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-    glTextureParameteri(pass.pyramid.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(pass.pyramid.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(pass.pyramid.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return pass;
-}
-
-void run_depth_pyramid_pass(const DepthPyramidPass& pass, const GBufferTargets& gbuffer) {
-    const GLuint pyramid = pass.pyramid.get();
-    glUseProgram(pass.base_level.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, gbuffer.depth.get());
-    glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                       GL_RG32F);
-    dispatch_over(pass.width, pass.height);
-
-    glUseProgram(pass.reduce.get());
-    for (int level = 1; level < pass.levels; ++level) {
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glBindImageTexture(DEEPGI_IMAGE_PYRAMID_SOURCE, pyramid, level - 1, GL_FALSE, 0,
-                           GL_READ_ONLY, GL_RG32F);
-        glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, level, GL_FALSE, 0,
-                           GL_WRITE_ONLY, GL_RG32F);
-        dispatch_over(level_extent(pass.width, level), level_extent(pass.height, level));
-    }
-    // Later passes sample the pyramid with texelFetch; tests read it back.
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-}
-
-FloatImage read_depth_pyramid_level(const DepthPyramidPass& pass, int level) {
-    FloatImage image;
-    image.width = level_extent(pass.width, level);
-    image.height = level_extent(pass.height, level);
-    image.channels = 3;
-    const std::size_t count = std::size_t(image.width) * std::size_t(image.height);
-    std::vector<float> packed(count * 2);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(pass.pyramid.get(), level, GL_RG, GL_FLOAT,
-                      GLsizei(packed.size() * sizeof(float)), packed.data());
-    image.pixels.assign(count * 3, 0.0f);
-    for (std::size_t i = 0; i < count; ++i) {
-        image.pixels[3 * i] = packed[2 * i];
-        image.pixels[3 * i + 1] = packed[2 * i + 1];
-    }
-    return image;
+std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<DepthPyramidPass>(loader);
 }
 
 }  // namespace deepgi

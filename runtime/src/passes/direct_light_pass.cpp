@@ -1,44 +1,72 @@
+// Lambertian key light with PCF shadows on both G-buffer layers (design.md 3,
+// step 3), one draw per layer into an R11F_G11F_B10F array.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
+#include <fmt/format.h>
+
 namespace deepgi {
 
-void draw_fullscreen_triangle(GLuint empty_vertex_array) {
-    glBindVertexArray(empty_vertex_array);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-}
+namespace {
 
-DirectLightPass create_direct_light_pass(const ShaderLoader& loader, int width, int height) {
-    DirectLightPass pass;
-    pass.width = width;
-    pass.height = height;
-    pass.program = loader.build_program(
-        {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "direct_light.frag"}});
-    pass.radiance = gl::create_texture_array(GL_R11F_G11F_B10F, width, height, DEEPGI_LAYER_COUNT);
-    for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
-        pass.layer_framebuffers[layer] = gl::create_framebuffer();
-        glNamedFramebufferTextureLayer(pass.layer_framebuffers[layer].get(), GL_COLOR_ATTACHMENT0,
-                                       pass.radiance.get(), 0, layer);
-        gl::check_framebuffer(pass.layer_framebuffers[layer], "direct light");
-    }
-    return pass;
-}
+class DirectLightPass final : public Pass {
+public:
+    explicit DirectLightPass(const ShaderLoader& loader)
+        : program_(build_fullscreen_program(loader, "direct_light.frag")) {}
 
-void run_direct_light_pass(const DirectLightPass& pass, const GBufferTargets& gbuffer,
-                           const ShadowPass& shadow, GLuint empty_vertex_array) {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glViewport(0, 0, pass.width, pass.height);
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, gbuffer.normal.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, gbuffer.albedo.get());
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, gbuffer.depth.get());
-    glBindTextureUnit(DEEPGI_UNIT_SHADOW_MAP, shadow.depth.get());
-    glUseProgram(pass.program.get());
-    for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
-        glBindFramebuffer(GL_FRAMEBUFFER, pass.layer_framebuffers[layer].get());
-        glProgramUniform1i(pass.program.get(), DEEPGI_UNIFORM_LAYER, layer);
-        draw_fullscreen_triangle(empty_vertex_array);
+    std::string_view name() const override { return "direct_light"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        radiance_ =
+            gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, DEEPGI_LAYER_COUNT);
+        label_texture(radiance_, name(), "radiance");
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            layer_framebuffers_[layer] = gl::create_framebuffer();
+            glNamedFramebufferTextureLayer(layer_framebuffers_[layer].get(), GL_COLOR_ATTACHMENT0,
+                                           radiance_.get(), 0, layer);
+            gl::check_framebuffer(layer_framebuffers_[layer], "direct light");
+        }
     }
+
+    void run(FrameResources& frame) override {
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+        glBindTextureUnit(DEEPGI_UNIT_SHADOW_MAP, frame.texture("shadow.depth"));
+        glUseProgram(program_.get());
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            begin_fullscreen(layer_framebuffers_[layer].get(), width_, height_);
+            glProgramUniform1i(program_.get(), DEEPGI_UNIFORM_LAYER, layer);
+            draw_fullscreen_triangle(frame.empty_vertex_array);
+        }
+        frame.publish("direct_light.radiance", radiance_.get());
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        std::vector<PassOutput> list;
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer)
+            list.push_back({.name = fmt::format("direct_light-radiance-layer{}", layer),
+                            .texture = radiance_.get(),
+                            .layer = layer,
+                            .width = width_,
+                            .height = height_});
+        return list;
+    }
+
+private:
+    gl::Program program_;
+    gl::Texture radiance_;  // one layer per G-buffer layer
+    gl::Framebuffer layer_framebuffers_[DEEPGI_LAYER_COUNT];
+    int width_ = 0;
+    int height_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<DirectLightPass>(loader);
 }
 
 }  // namespace deepgi

@@ -1,5 +1,11 @@
+// The two-layer deep G-buffer (design.md 3, step 1) with its three generators.
+// Layer-0 depth goes into the "layer0-depth" history pair after the G-buffer
+// is built: the peel generator's second pass reads it this frame, the
+// single-pass generators read the previous frame's.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
+
+#include <fmt/format.h>
 
 namespace deepgi {
 
@@ -7,6 +13,15 @@ namespace {
 
 constexpr GLenum all_outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                   GL_COLOR_ATTACHMENT3};
+constexpr const char* layer0_depth_history = "layer0-depth";
+
+struct GBufferTargets {
+    gl::Texture normal;    // RG16F array, octahedral camera-space normal
+    gl::Texture albedo;    // RGBA8 array, sRGB-encoded by the shader
+    gl::Texture emissive;  // R11F_G11F_B10F array (layer 0 read)
+    gl::Texture motion;    // RG16F array, pixels moved since last frame (layer 0 read)
+    gl::Texture depth;     // DEPTH_COMPONENT32F array, near/z (reversed, infinite)
+};
 
 void attach_layer(const gl::Framebuffer& framebuffer, const GBufferTargets& targets, int layer) {
     const GLuint fb = framebuffer.get();
@@ -35,100 +50,156 @@ void clear_gbuffer(const gl::Framebuffer& framebuffer, int colour_outputs) {
     glClearNamedFramebufferfv(framebuffer.get(), GL_DEPTH, 0, &nothing_hit);
 }
 
-void copy_layer0_depth_to_reference(const GBufferPass& pass) {
-    glCopyImageSubData(pass.targets.depth.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0,
-                       pass.targets.reference_depth.get(), GL_TEXTURE_2D, 0, 0, 0, 0, pass.width,
-                       pass.height, 1);
-}
-
-}  // namespace
-
-GBufferPass create_gbuffer_pass(const ShaderLoader& loader, int width, int height) {
-    GBufferPass pass;
-    pass.width = width;
-    pass.height = height;
-    const std::vector<ShaderStage> two_stages = {{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                                 {GL_FRAGMENT_SHADER, "gbuffer.frag"}};
-    pass.peel_first_layer = loader.build_program(two_stages);
-    pass.peel_second_layer = loader.build_program(two_stages, "#define PEEL_SECOND_LAYER 1\n");
-    pass.single_pass = loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
+class GBufferPass final : public Pass {
+public:
+    explicit GBufferPass(const ShaderLoader& loader) {
+        const std::vector<ShaderStage> two_stages = {{GL_VERTEX_SHADER, "gbuffer.vert"},
+                                                     {GL_FRAGMENT_SHADER, "gbuffer.frag"}};
+        peel_first_layer_ = loader.build_program(two_stages);
+        peel_second_layer_ = loader.build_program(two_stages, "#define PEEL_SECOND_LAYER 1\n");
+        single_pass_ = loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
                                              {GL_GEOMETRY_SHADER, "gbuffer.geom"},
                                              {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
                                             "#define SINGLE_PASS 1\n");
-
-    GBufferTargets& targets = pass.targets;
-    targets.normal = gl::create_texture_array(GL_RG16F, width, height, DEEPGI_LAYER_COUNT);
-    targets.albedo = gl::create_texture_array(GL_RGBA8, width, height, DEEPGI_LAYER_COUNT);
-    // Layered rendering needs every attachment layered, so emissive and motion
-    // carry a second layer that nothing reads.
-    targets.emissive =
-        gl::create_texture_array(GL_R11F_G11F_B10F, width, height, DEEPGI_LAYER_COUNT);
-    targets.motion = gl::create_texture_array(GL_RG16F, width, height, DEEPGI_LAYER_COUNT);
-    targets.depth =
-        gl::create_texture_array(GL_DEPTH_COMPONENT32F, width, height, DEEPGI_LAYER_COUNT);
-    targets.reference_depth = gl::create_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-    const float nothing_hit = 0.0f;
-    glClearTexImage(targets.reference_depth.get(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &nothing_hit);
-
-    pass.first_layer_framebuffer = gl::create_framebuffer();
-    attach_layer(pass.first_layer_framebuffer, targets, 0);
-    gl::check_framebuffer(pass.first_layer_framebuffer, "gbuffer layer 0");
-    pass.second_layer_framebuffer = gl::create_framebuffer();
-    attach_layer(pass.second_layer_framebuffer, targets, 1);
-    gl::check_framebuffer(pass.second_layer_framebuffer, "gbuffer layer 1");
-
-    pass.layered_framebuffer = gl::create_framebuffer();
-    const GLuint layered = pass.layered_framebuffer.get();
-    glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_NORMAL,
-                              targets.normal.get(), 0);
-    glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_ALBEDO,
-                              targets.albedo.get(), 0);
-    glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_EMISSIVE,
-                              targets.emissive.get(), 0);
-    glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_MOTION,
-                              targets.motion.get(), 0);
-    glNamedFramebufferTexture(layered, GL_DEPTH_ATTACHMENT, targets.depth.get(), 0);
-    glNamedFramebufferDrawBuffers(layered, 4, all_outputs);
-    gl::check_framebuffer(pass.layered_framebuffer, "gbuffer layered");
-    return pass;
-}
-
-void run_gbuffer_pass(const GBufferPass& pass, const SceneGpu& scene, Generator generator) {
-    glViewport(0, 0, pass.width, pass.height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, pass.targets.reference_depth.get());
-
-    if (generator == Generator::peel) {
-        clear_gbuffer(pass.first_layer_framebuffer, 4);
-        glBindFramebuffer(GL_FRAMEBUFFER, pass.first_layer_framebuffer.get());
-        glUseProgram(pass.peel_first_layer.get());
-        draw_scene(scene, pass.peel_first_layer.get());
-        copy_layer0_depth_to_reference(pass);
-
-        clear_gbuffer(pass.second_layer_framebuffer, 2);
-        // The second layer's emissive and motion are never written by peel; clear
-        // them too so every generator leaves the same unused layer behind.
-        const float zero[4] = {0, 0, 0, 0};
-        glClearTexSubImage(pass.targets.emissive.get(), 0, 0, 0, 1, pass.width, pass.height, 1,
-                           GL_RGBA, GL_FLOAT, zero);
-        glClearTexSubImage(pass.targets.motion.get(), 0, 0, 0, 1, pass.width, pass.height, 1,
-                           GL_RGBA, GL_FLOAT, zero);
-        glBindFramebuffer(GL_FRAMEBUFFER, pass.second_layer_framebuffer.get());
-        glUseProgram(pass.peel_second_layer.get());
-        draw_scene(scene, pass.peel_second_layer.get());
-        return;
     }
 
-    // Previous / reproject: the reference still holds last frame's layer 0.
-    clear_gbuffer(pass.layered_framebuffer, 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, pass.layered_framebuffer.get());
-    glUseProgram(pass.single_pass.get());
-    draw_scene(scene, pass.single_pass.get());
-    copy_layer0_depth_to_reference(pass);
+    std::string_view name() const override { return "gbuffer"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        GBufferTargets& targets = targets_;
+        targets.normal = gl::create_texture_array(GL_RG16F, width_, height_, DEEPGI_LAYER_COUNT);
+        targets.albedo = gl::create_texture_array(GL_RGBA8, width_, height_, DEEPGI_LAYER_COUNT);
+        // Layered rendering needs every attachment layered, so emissive and motion
+        // carry a second layer that nothing reads.
+        targets.emissive =
+            gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, DEEPGI_LAYER_COUNT);
+        targets.motion = gl::create_texture_array(GL_RG16F, width_, height_, DEEPGI_LAYER_COUNT);
+        targets.depth =
+            gl::create_texture_array(GL_DEPTH_COMPONENT32F, width_, height_, DEEPGI_LAYER_COUNT);
+        label_texture(targets.normal, name(), "normal");
+        label_texture(targets.albedo, name(), "albedo");
+        label_texture(targets.emissive, name(), "emissive");
+        label_texture(targets.motion, name(), "motion");
+        label_texture(targets.depth, name(), "depth");
+        frame.allocate_history(layer0_depth_history, GL_DEPTH_COMPONENT32F, width_, height_);
+
+        first_layer_framebuffer_ = gl::create_framebuffer();
+        attach_layer(first_layer_framebuffer_, targets, 0);
+        gl::check_framebuffer(first_layer_framebuffer_, "gbuffer layer 0");
+        second_layer_framebuffer_ = gl::create_framebuffer();
+        attach_layer(second_layer_framebuffer_, targets, 1);
+        gl::check_framebuffer(second_layer_framebuffer_, "gbuffer layer 1");
+
+        layered_framebuffer_ = gl::create_framebuffer();
+        const GLuint layered = layered_framebuffer_.get();
+        glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_NORMAL,
+                                  targets.normal.get(), 0);
+        glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_ALBEDO,
+                                  targets.albedo.get(), 0);
+        glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_EMISSIVE,
+                                  targets.emissive.get(), 0);
+        glNamedFramebufferTexture(layered, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_MOTION,
+                                  targets.motion.get(), 0);
+        glNamedFramebufferTexture(layered, GL_DEPTH_ATTACHMENT, targets.depth.get(), 0);
+        glNamedFramebufferDrawBuffers(layered, 4, all_outputs);
+        gl::check_framebuffer(layered_framebuffer_, "gbuffer layered");
+    }
+
+    void run(FrameResources& frame) override {
+        const HistoryPair& layer0_depth = frame.history(layer0_depth_history);
+        glViewport(0, 0, width_, height_);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        const SceneGpu& scene = *frame.scene_gpu;
+
+        if (frame.settings->generator == Generator::peel) {
+            clear_gbuffer(first_layer_framebuffer_, 4);
+            glBindFramebuffer(GL_FRAMEBUFFER, first_layer_framebuffer_.get());
+            glUseProgram(peel_first_layer_.get());
+            draw_scene(scene, peel_first_layer_.get());
+            copy_layer0_depth(layer0_depth.written());
+
+            clear_gbuffer(second_layer_framebuffer_, 2);
+            // The second layer's emissive and motion are never written by peel; clear
+            // them too so every generator leaves the same unused layer behind.
+            const float zero[4] = {0, 0, 0, 0};
+            glClearTexSubImage(targets_.emissive.get(), 0, 0, 0, 1, width_, height_, 1, GL_RGBA,
+                               GL_FLOAT, zero);
+            glClearTexSubImage(targets_.motion.get(), 0, 0, 0, 1, width_, height_, 1, GL_RGBA,
+                               GL_FLOAT, zero);
+            glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, layer0_depth.written());
+            glBindFramebuffer(GL_FRAMEBUFFER, second_layer_framebuffer_.get());
+            glUseProgram(peel_second_layer_.get());
+            draw_scene(scene, peel_second_layer_.get());
+        } else {
+            // Previous / reproject: compare against the previous frame's layer 0.
+            glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, layer0_depth.previous());
+            clear_gbuffer(layered_framebuffer_, 4);
+            glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
+            glUseProgram(single_pass_.get());
+            draw_scene(scene, single_pass_.get());
+            copy_layer0_depth(layer0_depth.written());
+        }
+        frame.publish("gbuffer.normal", targets_.normal.get());
+        frame.publish("gbuffer.albedo", targets_.albedo.get());
+        frame.publish("gbuffer.emissive", targets_.emissive.get());
+        frame.publish("gbuffer.motion", targets_.motion.get());
+        frame.publish("gbuffer.depth", targets_.depth.get());
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        std::vector<PassOutput> list;
+        auto add = [&](std::string name, const gl::Texture& texture, int layer, int channels,
+                       OutputDecode decode) {
+            list.push_back({.name = std::move(name),
+                            .texture = texture.get(),
+                            .layer = layer,
+                            .width = width_,
+                            .height = height_,
+                            .channels = channels,
+                            .decode = decode,
+                            .mask_depth = targets_.depth.get()});
+        };
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer)
+            add(fmt::format("gbuffer-depth-layer{}", layer), targets_.depth, layer, 1,
+                OutputDecode::depth_to_metres);
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer)
+            add(fmt::format("gbuffer-normal-layer{}", layer), targets_.normal, layer, 3,
+                OutputDecode::octahedral_normal);
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer)
+            add(fmt::format("gbuffer-albedo-layer{}", layer), targets_.albedo, layer, 3,
+                OutputDecode::srgb_to_linear);
+        add("gbuffer-emissive-layer0", targets_.emissive, 0, 3, OutputDecode::floats);
+        add("gbuffer-motion-layer0", targets_.motion, 0, 3, OutputDecode::floats_rg_as_rgb);
+        return list;
+    }
+
+private:
+    void copy_layer0_depth(GLuint destination) const {
+        glCopyImageSubData(targets_.depth.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, destination,
+                           GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
+    }
+
+    gl::Program peel_first_layer_;
+    gl::Program peel_second_layer_;
+    gl::Program single_pass_;  // with the geometry shader
+    gl::Framebuffer first_layer_framebuffer_;
+    gl::Framebuffer second_layer_framebuffer_;
+    gl::Framebuffer layered_framebuffer_;
+    GBufferTargets targets_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_gbuffer_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<GBufferPass>(loader);
 }
 
 }  // namespace deepgi

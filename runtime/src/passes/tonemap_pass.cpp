@@ -1,31 +1,46 @@
+// Filmic curve and sRGB encoding into the display image, guard band cropped.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 namespace deepgi {
 
-TonemapPass create_tonemap_pass(const ShaderLoader& loader, int viewport_width,
-                                int viewport_height) {
-    TonemapPass pass;
-    pass.width = viewport_width;
-    pass.height = viewport_height;
-    pass.program = loader.build_program(
-        {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "tonemap.frag"}});
-    pass.colour = gl::create_texture_2d(GL_RGBA8, viewport_width, viewport_height);
-    pass.framebuffer = gl::create_framebuffer();
-    glNamedFramebufferTexture(pass.framebuffer.get(), GL_COLOR_ATTACHMENT0, pass.colour.get(), 0);
-    gl::check_framebuffer(pass.framebuffer, "tonemap");
-    return pass;
-}
+namespace {
 
-void run_tonemap_pass(const TonemapPass& pass, const ComposePass& compose,
-                      GLuint empty_vertex_array) {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glViewport(0, 0, pass.width, pass.height);
-    glBindTextureUnit(DEEPGI_UNIT_COMPOSE, compose.radiance.get());
-    glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.get());
-    glUseProgram(pass.program.get());
-    draw_fullscreen_triangle(empty_vertex_array);
+class TonemapPass final : public Pass {
+public:
+    explicit TonemapPass(const ShaderLoader& loader)
+        : program_(build_fullscreen_program(loader, "tonemap.frag")) {}
+
+    std::string_view name() const override { return "tonemap"; }
+    void resize(FrameResources&) override {}  // writes the frame's display image
+    bool enabled(const RenderSettings& settings) const override {
+        return settings.view == DebugView::final_image;
+    }
+
+    void run(FrameResources& frame) override {
+        begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
+                         frame.settings->height);
+        glBindTextureUnit(DEEPGI_UNIT_COMPOSE, frame.texture("compose.radiance"));
+        glUseProgram(program_.get());
+        draw_fullscreen_triangle(frame.empty_vertex_array);
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources& frame) const override {
+        return {{.name = "tonemap-colour",
+                 .texture = frame.display.get(),
+                 .width = frame.settings->width,
+                 .height = frame.settings->height,
+                 .decode = OutputDecode::unorm_rgb}};
+    }
+
+private:
+    gl::Program program_;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_tonemap_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<TonemapPass>(loader);
 }
 
 }  // namespace deepgi

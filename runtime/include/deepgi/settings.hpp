@@ -1,0 +1,120 @@
+#pragma once
+// The renderer's settings vocabulary, in one place: every enum with its name
+// table (used by the CLI, the ImGui panel and the docs), every limit, and the
+// one validation. Front ends parse text into these types and call validate();
+// they hold no limits or names of their own.
+#include "shared_enums.h"
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace deepgi {
+
+// Enum values come from shaders/shared_enums.h, so C++ and GLSL cannot disagree.
+enum class Generator {
+    peel = DEEPGI_GENERATOR_PEEL,
+    previous = DEEPGI_GENERATOR_PREVIOUS,
+    reproject = DEEPGI_GENERATOR_REPROJECT,
+};
+
+enum class DebugView {
+    final_image = DEEPGI_VIEW_FINAL,
+    normal_layer0 = DEEPGI_VIEW_NORMAL_LAYER0,
+    normal_layer1 = DEEPGI_VIEW_NORMAL_LAYER1,
+    albedo_layer0 = DEEPGI_VIEW_ALBEDO_LAYER0,
+    albedo_layer1 = DEEPGI_VIEW_ALBEDO_LAYER1,
+    emissive = DEEPGI_VIEW_EMISSIVE,
+    motion = DEEPGI_VIEW_MOTION,
+    depth_layer0 = DEEPGI_VIEW_DEPTH_LAYER0,
+    depth_layer1 = DEEPGI_VIEW_DEPTH_LAYER1,
+    direct_layer0 = DEEPGI_VIEW_DIRECT_LAYER0,
+    direct_layer1 = DEEPGI_VIEW_DIRECT_LAYER1,
+    ao_raw = DEEPGI_VIEW_AO_RAW,          // deep SAO visibility before the bilateral blur
+    ao_blurred = DEEPGI_VIEW_AO_BLURRED,  // after it: what the compose pass multiplies in
+};
+
+enum class TimingMode { automatic, cpu, gpu };
+
+// One row of an enum's name table.
+template <class Enum>
+struct EnumName {
+    Enum value;
+    std::string_view name;
+};
+
+// The name tables, in display order.
+std::span<const EnumName<Generator>> enum_names(Generator);
+std::span<const EnumName<DebugView>> enum_names(DebugView);
+std::span<const EnumName<TimingMode>> enum_names(TimingMode);
+
+// "?" for a value outside the table.
+template <class Enum>
+std::string_view to_string(Enum value) {
+    for (const auto& row : enum_names(Enum{}))
+        if (row.value == value) return row.name;
+    return "?";
+}
+template <class Enum>
+std::optional<Enum> parse_enum(std::string_view text) {
+    for (const auto& row : enum_names(Enum{}))
+        if (row.name == text) return row.value;
+    return std::nullopt;
+}
+// "peel, previous, reproject"
+template <class Enum>
+std::string enum_name_list() {
+    std::string list;
+    for (const auto& row : enum_names(Enum{})) {
+        if (!list.empty()) list += ", ";
+        list += row.name;
+    }
+    return list;
+}
+// Throws InputError "<option> '<text>' is not one of <names>".
+Generator parse_generator(std::string_view option, std::string_view text);
+DebugView parse_debug_view(std::string_view option, std::string_view text);
+TimingMode parse_timing_mode(std::string_view option, std::string_view text);
+
+// Limits the validation enforces, exported so the CLI help and the ImGui
+// sliders show the same ranges.
+namespace limits {
+inline constexpr int max_image_side = 16384;
+inline constexpr int min_shadow_map_size = 16;
+inline constexpr int max_shadow_map_size = 8192;
+inline constexpr float max_guard_band_fraction = 1.0f;
+inline constexpr int max_ao_mip_level = 15;
+inline constexpr float min_ao_q = 1.0f;
+inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
+}  // namespace limits
+
+// Deep SAO (design.md 3, step 4; docs/deep-sao.md). Tap count and spiral turns
+// come from the generated ao_taps.glsl, not from here.
+struct AoSettings {
+    float radius = 0.5f;     // world-space gather radius r (m)
+    float bias = 0.01f;      // beta (m): ignores occluders closer than this to the tangent plane
+    float intensity = 1.0f;  // exponent applied to the visibility
+    float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
+    int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
+    int max_mip_level = 5;   // deepest depth-pyramid level built and read
+};
+
+struct RenderSettings {
+    int width = 1280;
+    int height = 720;
+    float guard_band_fraction = 0.1f;  // of the height, on every side
+    Generator generator = Generator::peel;
+    float min_separation = 0.5f;  // camera-space metres between layer 0 and layer 1
+    float exposure = 1.0f;
+    DebugView view = DebugView::final_image;
+    int shadow_map_size = 2048;
+    TimingMode timing = TimingMode::automatic;
+    AoSettings ao;
+};
+
+// Every check of every setting, enum values included; throws InputError with
+// one line naming the setting by its command-line option.
+void validate(const RenderSettings& settings);
+
+}  // namespace deepgi

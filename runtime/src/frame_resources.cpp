@@ -1,0 +1,84 @@
+#include "frame_resources.hpp"
+
+#include "deepgi/errors.hpp"
+
+#include <fmt/format.h>
+
+namespace deepgi {
+
+void FrameResources::publish(const std::string& name, GLuint texture) {
+    textures_[name] = texture;
+}
+
+GLuint FrameResources::texture(std::string_view name) const {
+    const auto found = textures_.find(name);
+    if (found == textures_.end())
+        throw GraphicsError(fmt::format("no pass has written the texture '{}' yet", name));
+    return found->second;
+}
+
+void FrameResources::publish_int(const std::string& name, int value) {
+    integers_[name] = value;
+}
+
+int FrameResources::integer(std::string_view name) const {
+    const auto found = integers_.find(name);
+    if (found == integers_.end())
+        throw GraphicsError(fmt::format("no pass has published the value '{}' yet", name));
+    return found->second;
+}
+
+void FrameResources::allocate_display(int width, int height) {
+    display = gl::create_texture_2d(GL_RGBA8, width, height);
+    glObjectLabel(GL_TEXTURE, display.get(), -1, "display");
+    display_framebuffer = gl::create_framebuffer();
+    glNamedFramebufferTexture(display_framebuffer.get(), GL_COLOR_ATTACHMENT0, display.get(), 0);
+    gl::check_framebuffer(display_framebuffer, "display");
+}
+
+namespace {
+
+void clear_slot(const HistoryPair& pair, GLuint texture) {
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(texture, 0, pair.clear_format, GL_FLOAT, zero);
+}
+
+}  // namespace
+
+HistoryPair& FrameResources::allocate_history(const std::string& name, GLenum internal_format,
+                                              int width, int height) {
+    HistoryPair& pair = history_[name];
+    pair.clear_format = internal_format == GL_DEPTH_COMPONENT32F ? GL_DEPTH_COMPONENT : GL_RGBA;
+    for (int slot = 0; slot < 2; ++slot) {
+        pair.slots[slot] = gl::create_texture_2d(internal_format, width, height);
+        const std::string label = fmt::format("history {} [{}]", name, slot);
+        glObjectLabel(GL_TEXTURE, pair.slots[slot].get(), -1, label.c_str());
+        clear_slot(pair, pair.slots[slot].get());
+    }
+    pair.written_slot = 0;
+    return pair;
+}
+
+HistoryPair& FrameResources::history(std::string_view name) {
+    const auto found = history_.find(name);
+    if (found == history_.end())
+        throw GraphicsError(fmt::format("no history named '{}' was allocated", name));
+    return found->second;
+}
+
+void FrameResources::invalidate_history(const std::string& reason) {
+    history_valid_ = false;
+    for (auto& [name, pair] : history_) clear_slot(pair, pair.previous());
+    const std::string message = fmt::format("history invalidated: {}", reason);
+    history_log_.push_back(message);
+    glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 0,
+                         GL_DEBUG_SEVERITY_NOTIFICATION, -1, message.c_str());
+}
+
+void FrameResources::end_frame() {
+    for (auto& [name, pair] : history_) pair.written_slot = 1 - pair.written_slot;
+    previous_camera = camera;
+    history_valid_ = true;
+}
+
+}  // namespace deepgi

@@ -1,0 +1,76 @@
+#pragma once
+// The pass interface. A pass builds its programs once (constructor), owns its
+// render targets ((re)allocated by resize() without recompiling anything),
+// runs against FrameResources, and lists the outputs --dump can write. The
+// frame (frame.cpp) only holds the list of passes in the order they run.
+#include "deepgi/gl_objects.hpp"
+#include "deepgi/image_io.hpp"
+#include "deepgi/renderer.hpp"
+#include "frame_resources.hpp"
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace deepgi {
+
+// How an output texture becomes the float pixels of a dump.
+enum class OutputDecode {
+    floats,             // the texture's channels as stored (`channels` of R, RG or RGB)
+    floats_rg_as_rgb,   // RG floats, written as RGB with blue 0 (motion, depth pyramid)
+    depth_to_metres,    // reversed-Z depth: near / stored, 0 where nothing was hit
+    octahedral_normal,  // RG octahedral unit vector -> xyz, 0 where `mask_depth` is empty
+    srgb_to_linear,     // RGBA8 sRGB-encoded -> linear RGB
+    unorm_rgb,          // RGBA8 -> RGB in [0, 1]
+    shadow_depth,       // depth with compare mode, switched off while reading
+};
+
+struct PassOutput {
+    std::string name;  // file name in --dump, e.g. "gbuffer-depth-layer1"
+    GLuint texture = 0;
+    int layer = 0;  // array layer (2-D array textures), else 0
+    int level = 0;  // MIP level
+    int width = 0;
+    int height = 0;
+    int channels = 3;  // for OutputDecode::floats: 1 or 3
+    OutputDecode decode = OutputDecode::floats;
+    GLuint mask_depth = 0;  // for octahedral_normal: depth array of the same layer
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    // Names the timer entry, the GL debug group and the object labels.
+    virtual std::string_view name() const = 0;
+    // (Re)allocates render targets for frame.settings and frame.layout.
+    virtual void resize(FrameResources& frame) = 0;
+    // Whether the pass runs (and lists outputs) with these settings.
+    virtual bool enabled(const RenderSettings&) const { return true; }
+    virtual void run(FrameResources& frame) = 0;
+    virtual std::vector<PassOutput> outputs(const FrameResources&) const { return {}; }
+};
+
+// The passes of a frame in the order they run (frame.cpp). Tests may run a
+// different list through Renderer's constructor.
+const std::vector<PassFactory>& default_pass_list();
+
+// Reads `output` back and decodes it (pass_output.cpp). `near_plane` turns
+// reversed-Z depth into metres.
+FloatImage read_pass_output(const PassOutput& output, float near_plane);
+
+// ---- helpers shared by the passes ----
+
+// A program of fullscreen.vert and one fragment shader.
+gl::Program build_fullscreen_program(const ShaderLoader& loader, const std::string& fragment,
+                                     const std::string& defines = {});
+// Fixed-function state every fullscreen pass wants, viewport and target bound.
+void begin_fullscreen(GLuint framebuffer, int width, int height);
+// Draws the fullscreen triangle into the bound framebuffer.
+void draw_fullscreen_triangle(GLuint empty_vertex_array);
+// A framebuffer whose colour attachment 0 is level 0 of `texture` (2-D).
+gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what);
+// Names a texture for captures: "<pass> <what>".
+void label_texture(const gl::Texture& texture, std::string_view pass, std::string_view what);
+
+}  // namespace deepgi

@@ -1,0 +1,130 @@
+// Name tables and the validation of every setting.
+#include "deepgi/settings.hpp"
+
+#include "deepgi/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+
+namespace deepgi {
+
+namespace {
+
+constexpr std::array<EnumName<Generator>, 3> generator_table = {{
+    {Generator::peel, "peel"},
+    {Generator::previous, "previous"},
+    {Generator::reproject, "reproject"},
+}};
+
+constexpr std::array<EnumName<DebugView>, 13> view_table = {{
+    {DebugView::final_image, "final"},
+    {DebugView::normal_layer0, "normal-layer0"},
+    {DebugView::normal_layer1, "normal-layer1"},
+    {DebugView::albedo_layer0, "albedo-layer0"},
+    {DebugView::albedo_layer1, "albedo-layer1"},
+    {DebugView::emissive, "emissive"},
+    {DebugView::motion, "motion"},
+    {DebugView::depth_layer0, "depth-layer0"},
+    {DebugView::depth_layer1, "depth-layer1"},
+    {DebugView::direct_layer0, "direct-layer0"},
+    {DebugView::direct_layer1, "direct-layer1"},
+    {DebugView::ao_raw, "ao-raw"},
+    {DebugView::ao_blurred, "ao-blurred"},
+}};
+
+constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
+    {TimingMode::automatic, "auto"},
+    {TimingMode::cpu, "cpu"},
+    {TimingMode::gpu, "gpu"},
+}};
+
+template <class Enum>
+Enum parse_or_throw(std::string_view option, std::string_view text) {
+    if (auto value = parse_enum<Enum>(text)) return *value;
+    throw InputError(fmt::format("{} '{}' is not one of {}", option, text, enum_name_list<Enum>()));
+}
+
+// The one place an enum value outside its table is rejected.
+template <class Enum>
+void check_enum(std::string_view option, Enum value) {
+    if (to_string(value) == "?") {
+        throw InputError(fmt::format("{} value {} is not one of {}", option,
+                                     static_cast<int>(value), enum_name_list<Enum>()));
+    }
+}
+
+bool finite_at_least(float value, float minimum) {
+    return std::isfinite(value) && value >= minimum;
+}
+bool finite_positive(float value) {
+    return std::isfinite(value) && value > 0.0f;
+}
+
+}  // namespace
+
+std::span<const EnumName<Generator>> enum_names(Generator) {
+    return generator_table;
+}
+std::span<const EnumName<DebugView>> enum_names(DebugView) {
+    return view_table;
+}
+std::span<const EnumName<TimingMode>> enum_names(TimingMode) {
+    return timing_table;
+}
+
+Generator parse_generator(std::string_view option, std::string_view text) {
+    return parse_or_throw<Generator>(option, text);
+}
+DebugView parse_debug_view(std::string_view option, std::string_view text) {
+    return parse_or_throw<DebugView>(option, text);
+}
+TimingMode parse_timing_mode(std::string_view option, std::string_view text) {
+    return parse_or_throw<TimingMode>(option, text);
+}
+
+void validate(const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > limits::max_image_side ||
+        settings.height > limits::max_image_side) {
+        throw InputError(fmt::format("--size {}x{} is out of range (1 to {} per side)",
+                                     settings.width, settings.height, limits::max_image_side));
+    }
+    if (!(settings.guard_band_fraction >= 0.0f &&
+          settings.guard_band_fraction <= limits::max_guard_band_fraction)) {
+        throw InputError(
+            fmt::format("--guard-band must be in [0, {}]", limits::max_guard_band_fraction));
+    }
+    check_enum("--generator", settings.generator);
+    check_enum("--view", settings.view);
+    check_enum("--timing", settings.timing);
+    if (!finite_at_least(settings.min_separation, 0.0f))
+        throw InputError("--min-separation must be a finite number of metres >= 0");
+    if (!finite_positive(settings.exposure))
+        throw InputError("--exposure must be a finite number > 0");
+    if (settings.shadow_map_size < limits::min_shadow_map_size ||
+        settings.shadow_map_size > limits::max_shadow_map_size) {
+        throw InputError(fmt::format("shadow map size must be in [{}, {}]",
+                                     limits::min_shadow_map_size, limits::max_shadow_map_size));
+    }
+    const AoSettings& ao = settings.ao;
+    if (!finite_positive(ao.radius))
+        throw InputError("--ao-radius must be a finite number of metres > 0");
+    if (!finite_at_least(ao.bias, 0.0f))
+        throw InputError("--ao-bias must be a finite number of metres >= 0");
+    if (!finite_positive(ao.intensity))
+        throw InputError("--ao-intensity must be a finite number > 0");
+    if (!finite_at_least(ao.q, limits::min_ao_q))
+        throw InputError(
+            fmt::format("--ao-q must be a finite number of pixels >= {}", limits::min_ao_q));
+    if (ao.layers < 1 || ao.layers > limits::max_ao_layers) {
+        throw InputError(
+            fmt::format("--ao-layers must be 1 or {}, got {}", limits::max_ao_layers, ao.layers));
+    }
+    if (ao.max_mip_level < 0 || ao.max_mip_level > limits::max_ao_mip_level) {
+        throw InputError(fmt::format("--ao-max-mip must be in [0, {}], got {}",
+                                     limits::max_ao_mip_level, ao.max_mip_level));
+    }
+}
+
+}  // namespace deepgi

@@ -1,0 +1,32 @@
+// The layer count and the values of the renderer's enums, shared by GLSL and C++: the C++ enums in
+// runtime/include/deepgi/settings.hpp take their values from these, so the
+// two sides cannot disagree. Only #define lines, so it can be included
+// anywhere (also from the public settings header).
+#ifndef DEEPGI_SHARED_ENUMS_H
+#define DEEPGI_SHARED_ENUMS_H
+
+#define DEEPGI_LAYER_COUNT 2  // deep G-buffer layers
+
+#define DEEPGI_GENERATOR_PEEL 0
+#define DEEPGI_GENERATOR_PREVIOUS 1
+#define DEEPGI_GENERATOR_REPROJECT 2
+
+#define DEEPGI_LIGHT_DIRECTIONAL 0
+#define DEEPGI_LIGHT_SPOT 1
+
+#define DEEPGI_VIEW_FINAL 0
+#define DEEPGI_VIEW_NORMAL_LAYER0 1
+#define DEEPGI_VIEW_NORMAL_LAYER1 2
+#define DEEPGI_VIEW_ALBEDO_LAYER0 3
+#define DEEPGI_VIEW_ALBEDO_LAYER1 4
+#define DEEPGI_VIEW_EMISSIVE 5
+#define DEEPGI_VIEW_MOTION 6
+#define DEEPGI_VIEW_DEPTH_LAYER0 7
+#define DEEPGI_VIEW_DEPTH_LAYER1 8
+#define DEEPGI_VIEW_DIRECT_LAYER0 9
+#define DEEPGI_VIEW_DIRECT_LAYER1 10
+
+#define DEEPGI_VIEW_AO_RAW 11
+#define DEEPGI_VIEW_AO_BLURRED 12
+
+#endif
