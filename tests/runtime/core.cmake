@@ -27,3 +27,10 @@ add_test(NAME deepgi_image_identity
           -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/image_identity
           -P ${CMAKE_CURRENT_LIST_DIR}/image_identity.cmake)
 set_tests_properties(deepgi_image_identity PROPERTIES LABELS runtime TIMEOUT 300)
+
+# The pass interface, frame resources and settings module (runtime/src is
+# private to the library, so this suite adds it to its include path).
+add_executable(deepgi_pass_interface_tests ${CMAKE_CURRENT_LIST_DIR}/pass_interface_test.cpp)
+target_link_libraries(deepgi_pass_interface_tests PRIVATE deepgi::runtime spiral_catch_main)
+target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src)
+catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEOUT 300)

@@ -1,0 +1,274 @@
+// The frame's structure: resizing rebuilds no program, history is dropped
+// exactly when it should be, the settings vocabulary round-trips and rejects
+// bad values in one place, and a pass added from outside the runtime shows up
+// in the dump without any other edit.
+#include "deepgi/context.hpp"
+#include "deepgi/errors.hpp"
+#include "deepgi/renderer.hpp"
+#include "deepgi/settings.hpp"
+#include "pass.hpp"
+#include "passes/passes.hpp"
+
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+namespace fs = std::filesystem;
+using namespace deepgi;
+
+namespace {
+
+RenderSettings settings_at(int width, int height, Generator generator = Generator::previous) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.generator = generator;
+    settings.shadow_map_size = 512;
+    return settings;
+}
+
+// Every pass output of the last frame, by name.
+std::vector<std::pair<std::string, FloatImage>> all_outputs(const Renderer& renderer) {
+    std::vector<std::pair<std::string, FloatImage>> outputs;
+    for (const auto& name : renderer.pass_output_names())
+        outputs.emplace_back(name, renderer.read_pass_output(name));
+    return outputs;
+}
+
+bool any_nonzero(const FloatImage& image) {
+    return std::any_of(image.pixels.begin(), image.pixels.end(),
+                       [](float value) { return value != 0.0f; });
+}
+
+std::string last_line(const std::vector<std::string>& log) {
+    return log.empty() ? std::string() : log.back();
+}
+
+fs::path scratch_folder(const std::string& name) {
+    const fs::path path =
+        fs::temp_directory_path() / ("deepgi-pass-test-" + std::to_string(::getpid()) + "-" + name);
+    fs::remove_all(path);
+    fs::create_directories(path);
+    return path;
+}
+
+std::string file_bytes(const fs::path& path) {
+    std::ifstream stream(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("passes: resizing compiles no program and renders what a fresh renderer renders",
+          "[runtime][passes]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("atrium");
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    Renderer resized(scene, settings_at(200, 120), loader);
+    const int built = loader.programs_built();
+    REQUIRE(built > 0);
+    resized.render(scene.default_camera);
+    resized.set_settings(settings_at(320, 180));
+    resized.render(scene.default_camera);
+    resized.set_settings(settings_at(200, 120));
+    resized.render(scene.default_camera);
+    resized.render(scene.default_camera);
+    CHECK(loader.programs_built() == built);
+
+    // A fresh renderer compiles everything again (so the count above can move).
+    Renderer fresh(scene, settings_at(200, 120), loader);
+    CHECK(loader.programs_built() == 2 * built);
+    fresh.render(scene.default_camera);
+    fresh.render(scene.default_camera);
+    CHECK(resized.read_output_rgba8() == fresh.read_output_rgba8());
+    const auto expected = all_outputs(fresh);
+    const auto actual = all_outputs(resized);
+    REQUIRE(actual.size() == expected.size());
+    for (std::size_t i = 0; i < actual.size(); ++i) {
+        INFO(actual[i].first);
+        CHECK(actual[i].first == expected[i].first);
+        CHECK(actual[i].second.width == expected[i].second.width);
+        CHECK(actual[i].second.pixels == expected[i].second.pixels);
+    }
+}
+
+TEST_CASE("passes: history survives an unchanged frame and is dropped on resize and camera cut",
+          "[runtime][passes]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    // Peel is exact and needs no history: the independent reference for layer 1.
+    Renderer peel(scene, settings_at(160, 90, Generator::peel), loader);
+    peel.render(scene.default_camera);
+    const FloatImage truth = peel.read_pass_output("gbuffer-depth-layer1");
+    REQUIRE(any_nonzero(truth));
+
+    Renderer previous(scene, settings_at(160, 90), loader);
+    CHECK_FALSE(previous.history_valid());
+    CHECK(last_line(previous.history_log()).find("new scene") != std::string::npos);
+
+    // Without history the single-pass generator has no layer 1 at all; with the
+    // previous frame from the same camera it finds peel's layer 1.
+    auto layer1_matches_truth = [&] {
+        const FloatImage layer1 = previous.read_pass_output("gbuffer-depth-layer1");
+        for (std::size_t i = 0; i < layer1.pixels.size(); ++i) {
+            const float tolerance = 1e-5f * std::abs(truth.pixels[i]) + 1e-6f;
+            if ((layer1.pixels[i] == 0.0f) != (truth.pixels[i] == 0.0f)) return false;
+            if (std::abs(layer1.pixels[i] - truth.pixels[i]) > tolerance) return false;
+        }
+        return true;
+    };
+    previous.render(scene.default_camera);
+    CHECK_FALSE(any_nonzero(previous.read_pass_output("gbuffer-depth-layer1")));
+    CHECK(previous.history_valid());
+    previous.render(scene.default_camera);
+    CHECK(layer1_matches_truth());
+    const std::size_t log_size = previous.history_log().size();
+
+    SECTION("an unchanged frame keeps it") {
+        previous.render(scene.default_camera);
+        CHECK(previous.history_valid());
+        CHECK(previous.history_log().size() == log_size);
+        CHECK(layer1_matches_truth());
+    }
+    SECTION("a settings change that keeps the size keeps it") {
+        RenderSettings brighter = previous.settings();
+        brighter.exposure = 2.0f;
+        previous.set_settings(brighter);
+        CHECK(previous.history_valid());
+        previous.render(scene.default_camera);
+        CHECK(previous.history_log().size() == log_size);
+        CHECK(layer1_matches_truth());
+    }
+    SECTION("a camera cut drops it") {
+        previous.render(scene.default_camera, CameraMotion::cut);
+        CHECK(last_line(previous.history_log()).find("camera cut") != std::string::npos);
+        CHECK_FALSE(any_nonzero(previous.read_pass_output("gbuffer-depth-layer1")));
+        previous.render(scene.default_camera);
+        CHECK(layer1_matches_truth());
+    }
+    SECTION("a resize drops it") {
+        previous.set_settings(settings_at(161, 91));
+        CHECK_FALSE(previous.history_valid());
+        CHECK(last_line(previous.history_log()).find("resize") != std::string::npos);
+        previous.render(scene.default_camera);
+        CHECK_FALSE(any_nonzero(previous.read_pass_output("gbuffer-depth-layer1")));
+    }
+}
+
+namespace {
+
+template <class Enum>
+void check_round_trip(int expected_count) {
+    const auto table = enum_names(Enum{});
+    CHECK(int(table.size()) == expected_count);
+    std::set<std::string_view> names;
+    std::set<int> values;
+    for (const auto& row : table) {
+        INFO(row.name);
+        names.insert(row.name);
+        values.insert(static_cast<int>(row.value));
+        CHECK(to_string(row.value) == row.name);
+        CHECK(parse_enum<Enum>(row.name) == row.value);
+    }
+    CHECK(int(names.size()) == expected_count);
+    CHECK(int(values.size()) == expected_count);
+    CHECK_FALSE(parse_enum<Enum>("no-such-name").has_value());
+}
+
+}  // namespace
+
+TEST_CASE("settings: every enum's name table round-trips", "[runtime][settings]") {
+    check_round_trip<Generator>(3);
+    check_round_trip<TimingMode>(3);
+    // One row per DEEPGI_VIEW_* value, the shader's switch covers 0 to 12.
+    check_round_trip<DebugView>(13);
+    for (int value = DEEPGI_VIEW_FINAL; value <= DEEPGI_VIEW_AO_BLURRED; ++value)
+        CHECK(to_string(static_cast<DebugView>(value)) != "?");
+    CHECK(enum_name_list<Generator>() == "peel, previous, reproject");
+}
+
+TEST_CASE("settings: an out-of-range value is rejected by validate() with one message",
+          "[runtime][settings]") {
+    RenderSettings settings = settings_at(64, 32);
+    REQUIRE_NOTHROW(validate(settings));
+    settings.generator = static_cast<Generator>(7);
+    const std::string expected = "--generator value 7 is not one of peel, previous, reproject";
+    CHECK_THROWS_WITH(validate(settings), expected);
+    // The renderer rejects it through the same check, with the same words.
+    HeadlessContext context;
+    CHECK_THROWS_WITH(
+        Renderer(make_builtin_scene("cornell"), settings, ShaderLoader::from_build_configuration()),
+        expected);
+    settings = settings_at(64, 32);
+    settings.view = static_cast<DebugView>(-1);
+    CHECK_THROWS_AS(validate(settings), InputError);
+    settings = settings_at(64, 32);
+    settings.ao.max_mip_level = limits::max_ao_mip_level + 1;
+    CHECK_THROWS_WITH(validate(settings), Catch::Contains("--ao-max-mip"));
+    settings.ao.max_mip_level = limits::max_ao_mip_level;
+    CHECK_NOTHROW(validate(settings));
+    CHECK_THROWS_WITH(parse_generator("--generator", "delay"),
+                      "--generator 'delay' is not one of peel, previous, reproject");
+}
+
+namespace {
+
+// A pass the runtime does not know: copies the blurred AO into its own texture.
+class CopyAoPass final : public Pass {
+public:
+    std::string_view name() const override { return "toy"; }
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        copy_ = gl::create_texture_2d(GL_R16F, width_, height_);
+    }
+    void run(FrameResources& frame) override {
+        glCopyImageSubData(frame.texture("ao.blurred"), GL_TEXTURE_2D, 0, 0, 0, 0, copy_.get(),
+                           GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
+        frame.publish("toy.ao", copy_.get());
+    }
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        return {{.name = "toy-ao-copy",
+                 .texture = copy_.get(),
+                 .width = width_,
+                 .height = height_,
+                 .channels = 1}};
+    }
+
+private:
+    gl::Texture copy_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+std::unique_ptr<Pass> make_copy_ao_pass(const ShaderLoader&, const Scene&) {
+    return std::make_unique<CopyAoPass>();
+}
+
+}  // namespace
+
+TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][passes]") {
+    HeadlessContext context;
+    std::vector<PassFactory> passes = default_pass_list();
+    passes.insert(passes.begin() + 6, make_copy_ao_pass);  // after the AO blur
+    const Scene scene = make_builtin_scene("cornell");
+    Renderer renderer(scene, settings_at(96, 64), ShaderLoader::from_build_configuration(), passes);
+    renderer.render(scene.default_camera);
+    const fs::path dump = scratch_folder("toy");
+    renderer.dump_pass_outputs(dump);
+    REQUIRE(fs::exists(dump / "toy-ao-copy.pfm"));
+    const std::string blurred = file_bytes(dump / "ao-blurred.pfm");
+    REQUIRE(blurred.size() > 96 * 64);
+    CHECK(file_bytes(dump / "toy-ao-copy.pfm") == blurred);
+    const auto timings = renderer.last_timings();
+    CHECK(std::any_of(timings.begin(), timings.end(),
+                      [](const PassTiming& timing) { return timing.pass == "toy"; }));
+    fs::remove_all(dump);
+}
