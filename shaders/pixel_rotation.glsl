@@ -9,20 +9,10 @@
 // arithmetic modulo 2^32, so the result is the same for every coordinate the
 // renderer accepts (up to 16384) and the same on the CPU.
 
-// The 32-bit finaliser of MurmurHash3: a bijection that flips each output bit
-// with probability close to 1/2 for any flipped input bit.
-uint avalanche32(uint h) {
-  h ^= h >> 16;
-  h *= 0x85ebca6bu;
-  h ^= h >> 13;
-  h *= 0xc2b2ae35u;
-  h ^= h >> 16;
-  return h;
-}
+#define DEEPGI_SHARED_FUNCTION
+#include "pixel_rotation_hash.h"
 
-// Distinct x in one row always give distinct hashes (xor with a fixed value,
-// then a bijection).
-uint pixel_rotation_hash(uvec2 pixel) { return avalanche32(pixel.x ^ avalanche32(pixel.y + 0x9e3779b9u)); }
+uint pixel_rotation_hash(uvec2 pixel) { return pixel_rotation_hash_xy(pixel.x, pixel.y); }
 
 // phi in [0, 2*pi), from the top 24 bits so the conversion to float is exact.
 float pixel_rotation_angle(uvec2 pixel) {

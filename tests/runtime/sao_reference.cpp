@@ -8,14 +8,13 @@ namespace deepgi::test {
 
 namespace {
 
-std::uint32_t avalanche32(std::uint32_t h) {
-    h ^= h >> 16;
-    h *= 0x85ebca6bu;
-    h ^= h >> 13;
-    h *= 0xc2b2ae35u;
-    h ^= h >> 16;
-    return h;
-}
+// The shader's own hash source (shaders/pixel_rotation_hash.h).
+namespace shader {
+using uint = std::uint32_t;
+#define DEEPGI_SHARED_FUNCTION inline
+#include "pixel_rotation_hash.h"
+#undef DEEPGI_SHARED_FUNCTION
+}  // namespace shader
 
 // Pixel centre (x + 1/2, y + 1/2) at linear depth z, as camera_position_at() in
 // gbuffer_encoding.glsl defines camera space: x, y from the NDC of the centre.
@@ -37,7 +36,7 @@ float obscurance(glm::vec3 v, glm::vec3 normal, float radius_squared, float bias
 }  // namespace
 
 std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) {
-    return avalanche32(x ^ avalanche32(y + 0x9e3779b9u));
+    return shader::pixel_rotation_hash_xy(x, y);
 }
 
 float pixel_rotation_angle(std::uint32_t x, std::uint32_t y) {
