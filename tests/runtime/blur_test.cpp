@@ -1,6 +1,6 @@
 // The bilateral blur on hand-made guides, where the right answer is known
 // without running a blur: constants stay constant, steps and creases stay
-// sharp, a flat plane gives back the generated Gaussian (issue 5).
+// sharp, a flat plane gives back the generated Gaussian.
 #include "passes/passes.hpp"
 #include "sao_test_support.hpp"
 #include "shader_shared.hpp"

@@ -1,4 +1,4 @@
-# ---- deepgi core (issue 4): G-buffer, outputs, shader loader, CLI ----
+# ---- deepgi core: G-buffer, outputs, shader loader, CLI, image identity, pass interface ----
 add_executable(deepgi_runtime_tests
   ${CMAKE_CURRENT_LIST_DIR}/test_gbuffer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_outputs.cpp

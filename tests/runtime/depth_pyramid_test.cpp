@@ -1,5 +1,5 @@
 // The camera-space depth pyramid against the G-buffer it is built from and the
-// rotated-grid rule (issue 5).
+// rotated-grid rule.
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
 

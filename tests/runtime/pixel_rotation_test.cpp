@@ -1,5 +1,5 @@
 // The per-pixel rotation hash: the GPU computes the same bits as the CPU at
-// 4K and beyond, and its angles show no structure across a 4K frame (issue 5).
+// 4K and beyond, and its angles show no structure across a 4K frame.
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
 

@@ -1,4 +1,4 @@
-// Deep SAO against its CPU evaluation and its invariants (issue 5).
+// Deep SAO against its CPU evaluation and its invariants.
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
 
