@@ -37,6 +37,7 @@ struct Options {
     std::string timing = "auto";
     bool camera_path = false;
     bool print_timings = false;
+    bool gl_debug = false;
     deepgi::AoSettings ao;
 };
 
@@ -74,6 +75,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.exposure = options.exposure;
     settings.guard_band_fraction = options.guard_band;
     settings.ao = options.ao;
+    settings.gl_debug = options.gl_debug;
     deepgi::validate(settings);
     return settings;
 }
@@ -143,6 +145,8 @@ int main(int argc, char** argv) {
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
                  "Print the last frame's per-pass milliseconds");
+    app.add_flag("--gl-debug", options.gl_debug,
+                 "Turn GL errors into an error that names the pass (KHR_debug callback)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-layers", options.ao.layers,
                    "Deep SAO: G-buffer layers the taps test, 1 or 2")

@@ -70,7 +70,8 @@ struct RendererState {
     std::vector<std::unique_ptr<Pass>> passes;
     FrameResources frame;
     PassTimer timer{true};
-    std::optional<Camera> last_camera;  // converts dumped depth to metres
+    std::optional<Camera> last_camera;   // converts dumped depth to metres
+    std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
 
     RendererState(const Scene& source, const RenderSettings& render_settings,
                   const ShaderLoader& shader_loader)
@@ -78,6 +79,33 @@ struct RendererState {
 };
 
 namespace {
+
+void GLAPIENTRY collect_gl_error(GLenum, GLenum type, GLuint, GLenum, GLsizei,
+                                 const GLchar* message, const void* user) {
+    if (type != GL_DEBUG_TYPE_ERROR) return;
+    auto* errors = static_cast<std::vector<std::string>*>(const_cast<void*>(user));
+    errors->emplace_back(message);
+}
+
+void install_gl_debug(RendererState& state, bool enabled) {
+    if (enabled) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(collect_gl_error, &state.gl_errors);
+    } else {
+        glDebugMessageCallback(nullptr, nullptr);
+    }
+}
+
+// With --gl-debug, turns the errors the callback collected into an exception.
+void throw_gl_errors(RendererState& state, std::string_view where) {
+    if (state.gl_errors.empty()) return;
+    const std::string first = state.gl_errors.front();
+    const std::size_t count = state.gl_errors.size();
+    state.gl_errors.clear();
+    throw GraphicsError(fmt::format("GL error in {}: {}{}", where, first,
+                                    count > 1 ? fmt::format(" (and {} more)", count - 1) : ""));
+}
 
 // Points the frame resources at the current settings and reallocates every
 // pass's render targets. Programs are untouched.
@@ -89,7 +117,10 @@ void resize_passes(RendererState& state) {
     frame.layout = frame_layout(state.settings);
     frame.empty_vertex_array = state.empty_vertex_array.get();
     frame.allocate_display(state.settings.width, state.settings.height);
-    for (auto& pass : state.passes) pass->resize(frame);
+    for (auto& pass : state.passes) {
+        pass->resize(frame);
+        throw_gl_errors(state, fmt::format("resizing pass '{}'", pass->name()));
+    }
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
@@ -161,6 +192,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
         if (!pass->enabled(state.settings)) continue;
         ScopedPass timed(state.timer, std::string(pass->name()));
         pass->run(frame);
+        throw_gl_errors(state, fmt::format("pass '{}'", pass->name()));
     }
     state.timer.end_frame();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -194,12 +226,22 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     glNamedBufferStorage(state.frame_constants.get(), sizeof(FrameConstants), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     state.timer = PassTimer(wants_cpu_clock(settings.timing));
-    for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
-    resize_passes(state);
+    install_gl_debug(state, settings.gl_debug);
+    try {
+        for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
+        resize_passes(state);
+    } catch (...) {
+        // No destructor runs for a half-built renderer; the callback must not
+        // outlive the error list it writes to.
+        if (settings.gl_debug) install_gl_debug(state, false);
+        throw;
+    }
     state.frame.invalidate_history("new scene");
 }
 
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+    if (state_->settings.gl_debug) install_gl_debug(*state_, false);
+}
 
 void Renderer::render(const Camera& camera, CameraMotion motion) {
     render_frame(*state_, camera, motion);
@@ -214,6 +256,7 @@ void Renderer::set_settings(const RenderSettings& settings) {
     const bool reallocate = resized || settings.shadow_map_size != state.settings.shadow_map_size ||
                             settings.ao.max_mip_level != state.settings.ao.max_mip_level;
     const bool retime = settings.timing != state.settings.timing;
+    if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     state.settings = settings;
     if (reallocate) resize_passes(state);
     if (resized) {

@@ -272,3 +272,41 @@ TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][pas
                       [](const PassTiming& timing) { return timing.pass == "toy"; }));
     fs::remove_all(dump);
 }
+
+namespace {
+
+// Binds a texture name that does not exist: GL_INVALID_OPERATION.
+class BrokenPass final : public Pass {
+public:
+    std::string_view name() const override { return "broken"; }
+    void resize(FrameResources&) override {}
+    void run(FrameResources&) override { glBindTextureUnit(0, 0x7fffffffu); }
+};
+
+std::unique_ptr<Pass> make_broken_pass(const ShaderLoader&, const Scene&) {
+    return std::make_unique<BrokenPass>();
+}
+
+}  // namespace
+
+TEST_CASE("passes: with gl_debug a GL error becomes an exception naming the pass",
+          "[runtime][passes]") {
+    HeadlessContext context;
+    std::vector<PassFactory> passes = default_pass_list();
+    passes.insert(passes.begin() + 2, make_broken_pass);
+    const Scene scene = make_builtin_scene("cornell");
+    RenderSettings settings = settings_at(64, 32);
+    {
+        // Control: without the callback the same frame renders.
+        Renderer quiet(scene, settings, ShaderLoader::from_build_configuration(), passes);
+        CHECK_NOTHROW(quiet.render(scene.default_camera));
+        while (glGetError() != GL_NO_ERROR) {
+        }
+    }
+    settings.gl_debug = true;
+    Renderer checked(scene, settings, ShaderLoader::from_build_configuration(), passes);
+    CHECK_THROWS_WITH(checked.render(scene.default_camera), Catch::Contains("pass 'broken'"));
+    // The default passes raise no GL error at all.
+    Renderer clean(scene, settings, ShaderLoader::from_build_configuration());
+    CHECK_NOTHROW(clean.render(scene.default_camera));
+}

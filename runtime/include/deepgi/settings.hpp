@@ -110,6 +110,9 @@ struct RenderSettings {
     DebugView view = DebugView::final_image;
     int shadow_map_size = 2048;
     TimingMode timing = TimingMode::automatic;
+    // Installs a KHR_debug callback: a GL error raised inside a pass becomes a
+    // GraphicsError naming the pass (costs a synchronous debug context).
+    bool gl_debug = false;
     AoSettings ao;
 };
 
