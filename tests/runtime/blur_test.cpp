@@ -108,7 +108,7 @@ float max_difference(const std::vector<float>& a, const std::vector<float>& b) {
     return worst;
 }
 
-TEST_CASE("the blur preserves a constant image, borders and sky included", "[blur]") {
+TEST_CASE("blur: the blur preserves a constant image, borders and sky included", "[blur]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     for (auto [w, h] : {std::pair{64, 40}, std::pair{5, 3}, std::pair{1, 1}}) {
@@ -119,7 +119,7 @@ TEST_CASE("the blur preserves a constant image, borders and sky included", "[blu
     }
 }
 
-TEST_CASE("the blur does not mix across a depth step or a crease", "[blur]") {
+TEST_CASE("blur: the blur does not mix across a depth step or a crease", "[blur]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const int w = 48;
@@ -177,7 +177,8 @@ void check_impulse_response(const ShaderLoader& loader, const spiral::codegen::B
     CHECK(std::abs(total - 1.0) <= 1e-5);
 }
 
-TEST_CASE("on a flat plane the blur's weights are the generated kernel and sum to 1", "[blur]") {
+TEST_CASE("blur: on a flat plane the blur's weights are the generated kernel and sum to 1",
+          "[blur]") {
     HeadlessContext context;
     const std::string build_sigma = SAO_TEST_BLUR_SIGMA;
     check_impulse_response(
@@ -191,7 +192,7 @@ TEST_CASE("on a flat plane the blur's weights are the generated kernel and sum t
                            spiral::codegen::gaussian_kernel(3, 1.1));
 }
 
-TEST_CASE("a 1-tap kernel is the identity", "[blur]") {
+TEST_CASE("blur: a 1-tap kernel is the identity", "[blur]") {
     HeadlessContext context;
     TemporaryFolder headers;
     write_blur_header(headers.path(), 0);
@@ -200,7 +201,7 @@ TEST_CASE("a 1-tap kernel is the identity", "[blur]") {
     CHECK(run_blur(loader_with_override(headers.path()), guide, input) == input);
 }
 
-TEST_CASE("sky passes through and never leaks into surfaces", "[blur]") {
+TEST_CASE("blur: sky passes through and never leaks into surfaces", "[blur]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const Guide guide = patchwork(64, 40);

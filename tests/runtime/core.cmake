@@ -1,10 +1,11 @@
 # ---- deepgi core: G-buffer, outputs, shader loader, CLI, image identity, pass interface ----
 add_executable(deepgi_runtime_tests
-  ${CMAKE_CURRENT_LIST_DIR}/test_gbuffer.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_outputs.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_shader_loader.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_cli.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/gbuffer_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/outputs_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/shader_loader_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp)
 target_link_libraries(deepgi_runtime_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt)
+target_include_directories(deepgi_runtime_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 target_compile_definitions(deepgi_runtime_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_runtime_tests deepgi)
 catch_discover_tests(deepgi_runtime_tests PROPERTIES LABELS runtime TIMEOUT 300)
@@ -32,5 +33,5 @@ set_tests_properties(deepgi_image_identity PROPERTIES LABELS runtime TIMEOUT 300
 # private to the library, so this suite adds it to its include path).
 add_executable(deepgi_pass_interface_tests ${CMAKE_CURRENT_LIST_DIR}/pass_interface_test.cpp)
 target_link_libraries(deepgi_pass_interface_tests PRIVATE deepgi::runtime spiral_catch_main)
-target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src)
+target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/tests)
 catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEOUT 300)

@@ -21,7 +21,7 @@ std::vector<FloatImage> read_pyramid(const Renderer& renderer) {
     }
 }
 
-TEST_CASE("depth pyramid level 0 is the linear depth of both layers", "[pyramid]") {
+TEST_CASE("depth pyramid: depth pyramid level 0 is the linear depth of both layers", "[pyramid]") {
     HeadlessContext context;
     const Scene scene = occluded_floor();
     Renderer renderer(scene, small_settings(160, 90), ShaderLoader::from_build_configuration());
@@ -51,7 +51,8 @@ TEST_CASE("depth pyramid level 0 is the linear depth of both layers", "[pyramid]
     CHECK(layer1_surfaces > 100);  // the scene puts something behind layer 0
 }
 
-TEST_CASE("depth pyramid levels are rotated-grid subsamples at any size", "[pyramid]") {
+TEST_CASE("depth pyramid: depth pyramid levels are rotated-grid subsamples at any size",
+          "[pyramid]") {
     HeadlessContext context;
     const Scene scene = occluded_floor(true);
     struct Size {

@@ -8,9 +8,9 @@
 #include "deepgi/settings.hpp"
 #include "pass.hpp"
 #include "passes/passes.hpp"
+#include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,14 +48,6 @@ bool any_nonzero(const FloatImage& image) {
 
 std::string last_line(const std::vector<std::string>& log) {
     return log.empty() ? std::string() : log.back();
-}
-
-fs::path scratch_folder(const std::string& name) {
-    const fs::path path =
-        fs::temp_directory_path() / ("deepgi-pass-test-" + std::to_string(::getpid()) + "-" + name);
-    fs::remove_all(path);
-    fs::create_directories(path);
-    return path;
 }
 
 std::string file_bytes(const fs::path& path) {
@@ -261,7 +253,8 @@ TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][pas
     const Scene scene = make_builtin_scene("cornell");
     Renderer renderer(scene, settings_at(96, 64), ShaderLoader::from_build_configuration(), passes);
     renderer.render(scene.default_camera);
-    const fs::path dump = scratch_folder("toy");
+    const test::TemporaryFolder folder;
+    const fs::path dump = folder.path() / "dump";
     renderer.dump_pass_outputs(dump);
     REQUIRE(fs::exists(dump / "toy-ao-copy.pfm"));
     const std::string blurred = file_bytes(dump / "ao-blurred.pfm");
@@ -270,7 +263,6 @@ TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][pas
     const auto timings = renderer.last_timings();
     CHECK(std::any_of(timings.begin(), timings.end(),
                       [](const PassTiming& timing) { return timing.pass == "toy"; }));
-    fs::remove_all(dump);
 }
 
 namespace {

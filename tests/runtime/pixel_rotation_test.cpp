@@ -46,7 +46,8 @@ void main() {
     return results;
 }
 
-TEST_CASE("the GPU rotation hash equals the CPU one bit for bit up to 16K", "[rotation]") {
+TEST_CASE("rotation: the GPU rotation hash equals the CPU one bit for bit up to 16K",
+          "[rotation]") {
     HeadlessContext context;
     std::vector<std::array<std::uint32_t, 2>> pixels;
     for (std::uint32_t y : {0u, 1u, 2159u, 2160u, 4095u, 8191u, 16383u}) {
@@ -107,7 +108,7 @@ RotationQuality measure_4k(Angle angle) {
     return quality;
 }
 
-TEST_CASE("rotation angles over a 4K frame are uniform and uncorrelated", "[rotation]") {
+TEST_CASE("rotation: rotation angles over a 4K frame are uniform and uncorrelated", "[rotation]") {
     const RotationQuality quality = measure_4k(pixel_rotation_angle);
     INFO("worst bin deviation " << quality.worst_bin_deviation << ", worst correlation "
                                 << quality.worst_correlation);
@@ -115,7 +116,7 @@ TEST_CASE("rotation angles over a 4K frame are uniform and uncorrelated", "[rota
     CHECK(quality.worst_correlation < 0.01);
 }
 
-TEST_CASE("the checks above catch a rotation built on the product of the coordinates",
+TEST_CASE("rotation: the checks above catch a rotation built on the product of the coordinates",
           "[rotation]") {
     // x * y * odd constant (mod 2^32): what a hash inherits from products of
     // pixel coordinates; row 0 and column 0 are all one angle, and rows whose y

@@ -4,7 +4,7 @@
 # ao_taps.glsl holds, so the test can ask the library for the same one.
 add_library(deepgi_sao_reference STATIC sao_reference.cpp)
 target_link_libraries(deepgi_sao_reference PUBLIC deepgi::runtime spiral::codegen)
-target_include_directories(deepgi_sao_reference PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+target_include_directories(deepgi_sao_reference PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/tests)
 
 add_executable(deepgi_sao_tests
   sao_test.cpp

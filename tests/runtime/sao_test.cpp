@@ -71,7 +71,7 @@ void check_against_reference(const Scene& scene, const RenderSettings& settings,
     CHECK(agreement.worst <= 1e-2f);
 }
 
-TEST_CASE("deep SAO matches the CPU evaluation with the build-time taps", "[reference]") {
+TEST_CASE("sao: deep SAO matches the CPU evaluation with the build-time taps", "[reference]") {
     const auto taps = build_time_ao_taps();
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     for (int layers : {2, 1}) {
@@ -82,7 +82,7 @@ TEST_CASE("deep SAO matches the CPU evaluation with the build-time taps", "[refe
     }
 }
 
-TEST_CASE("deep SAO matches the CPU evaluation with other parameters and tap patterns",
+TEST_CASE("sao: deep SAO matches the CPU evaluation with other parameters and tap patterns",
           "[reference]") {
     TemporaryFolder headers;
     const ShaderLoader loader = loader_with_override(headers.path());
@@ -99,7 +99,7 @@ TEST_CASE("deep SAO matches the CPU evaluation with other parameters and tap pat
     }
 }
 
-TEST_CASE("an unoccluded plane has visibility 1", "[reference]") {
+TEST_CASE("sao: an unoccluded plane has visibility 1", "[reference]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     for (float distance : {0.5f, 3.0f, 40.0f}) {
@@ -122,7 +122,7 @@ TEST_CASE("an unoccluded plane has visibility 1", "[reference]") {
     }
 }
 
-TEST_CASE("two layers never see less occlusion than one", "[reference]") {
+TEST_CASE("sao: two layers never see less occlusion than one", "[reference]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     for (const Scene& scene :
@@ -144,7 +144,7 @@ TEST_CASE("two layers never see less occlusion than one", "[reference]") {
     }
 }
 
-TEST_CASE("no NaN or Inf at grazing angles, near the near plane, on sky and at tiny sizes",
+TEST_CASE("sao: no NaN or Inf at grazing angles, near the near plane, on sky and at tiny sizes",
           "[robustness]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
@@ -225,7 +225,7 @@ float srgb_encode(float linear) {
     return c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-TEST_CASE("compose multiplies the ambient term by the blurred visibility", "[compose]") {
+TEST_CASE("sao: compose multiplies the ambient term by the blurred visibility", "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     const RenderSettings settings = small_settings(160, 90);
@@ -256,7 +256,7 @@ TEST_CASE("compose multiplies the ambient term by the blurred visibility", "[com
     CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
 }
 
-TEST_CASE("the ao-raw and ao-blurred debug views show the visibility", "[compose]") {
+TEST_CASE("sao: the ao-raw and ao-blurred debug views show the visibility", "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     for (auto [view, source] :

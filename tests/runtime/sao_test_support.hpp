@@ -1,11 +1,12 @@
 #pragma once
 // Shared by the deep SAO test files: tiny scenes built in the test (so each
-// expectation can be worked out by hand), temporary header folders for tap
-// patterns and kernels other than the build's, and read-back helpers.
+// expectation can be worked out by hand), tap patterns and kernels other than
+// the build's, and read-back helpers.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "scene/scene_builder.hpp"
+#include "support/runtime_support.hpp"
 
 #include <spiral/codegen.hpp>
 #include <spiral/optimizer.hpp>
@@ -18,35 +19,6 @@
 #include <unistd.h>
 
 namespace deepgi::test {
-
-// A fresh folder under the system temp dir, removed with everything in it.
-class TemporaryFolder {
-public:
-    TemporaryFolder() {
-        static std::atomic<int> counter{0};
-        path_ = std::filesystem::temp_directory_path() /
-                ("deepgi-sao-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        std::filesystem::create_directories(path_);
-    }
-    ~TemporaryFolder() {
-        std::error_code ignored;
-        std::filesystem::remove_all(path_, ignored);
-    }
-    TemporaryFolder(const TemporaryFolder&) = delete;
-    TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
-
-// The build's loader with `override_dir` searched before the generated
-// headers, so a header written there replaces the build-time one.
-inline ShaderLoader loader_with_override(const std::filesystem::path& override_dir) {
-    auto dirs = ShaderLoader::from_build_configuration().include_dirs();
-    dirs.insert(dirs.begin() + 1, override_dir);
-    return ShaderLoader(dirs);
-}
 
 inline void write_ao_header(const std::filesystem::path& dir, int taps, int tau) {
     spiral::codegen::write_file_atomically(
@@ -122,13 +94,6 @@ inline Scene occluded_floor(bool with_near_quad = false) {
     scene.default_camera.pitch = glm::radians(-15.0f);
     scene.camera_path.keys = {scene.default_camera};
     return scene;
-}
-
-inline bool all_finite(const FloatImage& image) {
-    for (float value : image.pixels) {
-        if (!std::isfinite(value)) return false;
-    }
-    return true;
 }
 
 }  // namespace deepgi::test

@@ -2,13 +2,14 @@
 // CPU evaluation of the same formula on the same G-buffer inputs.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
-#include "test_support.hpp"
+#include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
 
 using namespace deepgi;
 
-TEST_CASE("no NaN or Inf in any pass output, for every scene and generator", "[runtime][outputs]") {
+TEST_CASE("outputs: no NaN or Inf in any pass output, for every scene and generator",
+          "[runtime][outputs]") {
     HeadlessContext context;
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
         const Scene scene = make_builtin_scene(scene_name);
@@ -23,13 +24,13 @@ TEST_CASE("no NaN or Inf in any pass output, for every scene and generator", "[r
                 renderer.render(camera_on_path(scene.camera_path, frame * 4));
             for (const auto& name : renderer.pass_output_names()) {
                 INFO(scene_name << " " << to_string(generator) << " " << name);
-                REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
+                REQUIRE(deepgi::test::all_finite(renderer.read_pass_output(name)));
             }
         }
     }
 }
 
-TEST_CASE("odd and tiny sizes render with the right output size", "[runtime][outputs]") {
+TEST_CASE("outputs: odd and tiny sizes render with the right output size", "[runtime][outputs]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     for (auto [width, height] : {std::pair{1, 1}, {3, 2}, {161, 91}}) {
@@ -52,12 +53,13 @@ TEST_CASE("odd and tiny sizes render with the right output size", "[runtime][out
         // The centre of the default Cornell view is the back wall or a block.
         REQUIRE(depth.at(layout.internal_width / 2, layout.internal_height / 2) > 1.0f);
         for (const auto& name : renderer.pass_output_names())
-            REQUIRE(deepgi::testing::all_finite(renderer.read_pass_output(name)));
+            REQUIRE(deepgi::test::all_finite(renderer.read_pass_output(name)));
     }
 }
 
-TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed (cornell spot)",
-          "[runtime][outputs]") {
+TEST_CASE(
+    "outputs: direct light equals albedo/pi * irradiance * cosine where unshadowed (cornell spot)",
+    "[runtime][outputs]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings;
@@ -79,8 +81,8 @@ TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed 
         for (int x = 0; x < depth.width; x += 3) {
             const float d = depth.at(x, y);
             if (d <= 0.0f) continue;
-            const glm::vec3 ray = deepgi::testing::camera_ray(scene.default_camera, settings,
-                                                              float(x) + 0.5f, float(y) + 0.5f);
+            const glm::vec3 ray = deepgi::test::camera_ray(scene.default_camera, settings,
+                                                           float(x) + 0.5f, float(y) + 0.5f);
             const glm::vec3 position = ray * d;
             const glm::vec3 n(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
             glm::vec3 to_light = light_position - position;
@@ -105,8 +107,9 @@ TEST_CASE("direct light equals albedo/pi * irradiance * cosine where unshadowed 
     REQUIRE(checked > 100);
 }
 
-TEST_CASE("motion vectors equal the CPU reprojection of layer-0 points into the previous camera",
-          "[runtime][outputs]") {
+TEST_CASE(
+    "outputs: motion vectors equal the CPU reprojection of layer-0 points into the previous camera",
+    "[runtime][outputs]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("atrium");
     RenderSettings settings;
@@ -131,7 +134,7 @@ TEST_CASE("motion vectors equal the CPU reprojection of layer-0 points into the 
             if (d <= 0.0f) continue;
             const glm::vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
             const glm::vec3 camera_point =
-                deepgi::testing::camera_ray(current, settings, pixel.x, pixel.y) * d;
+                deepgi::test::camera_ray(current, settings, pixel.x, pixel.y) * d;
             const glm::vec4 clip =
                 previous_view_projection * camera_to_world * glm::vec4(camera_point, 1.0f);
             if (clip.w <= 0.0f) continue;

@@ -1,8 +1,9 @@
 #pragma once
-// Shared helpers: a CPU ray cast of the scene triangles (the independent
-// oracle for the G-buffer) and a headless renderer set-up.
+// A CPU ray cast of the scene triangles: the independent oracle for the
+// G-buffer.
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "support/runtime_support.hpp"
 
 #include <glm/glm.hpp>
 
@@ -10,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-namespace deepgi::testing {
+namespace deepgi::test {
 
 struct RayHits {
     float layer0 = 0.0f;  // linear camera depth, 0 for none
@@ -77,11 +78,4 @@ inline RayHits ray_cast(const Scene& scene, const Camera& camera, const RenderSe
     return result;
 }
 
-inline bool all_finite(const FloatImage& image) {
-    for (float value : image.pixels) {
-        if (!std::isfinite(value)) return false;
-    }
-    return true;
-}
-
-}  // namespace deepgi::testing
+}  // namespace deepgi::test

@@ -2,7 +2,7 @@
 // single-pass generators against peel.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
-#include "test_support.hpp"
+#include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <iostream>
 
 using namespace deepgi;
-using deepgi::testing::ray_cast;
+using deepgi::test::ray_cast;
 
 namespace {
 
@@ -98,21 +98,22 @@ void check_peel_against_ray_cast(const std::string& scene_name, int stride) {
 
 }  // namespace
 
-TEST_CASE("peel layer 1 is at least dz behind layer 0 and matches a CPU ray cast: cornell",
+TEST_CASE("gbuffer: peel layer 1 is at least dz behind layer 0 and matches a CPU ray cast: cornell",
           "[runtime][gbuffer]") {
     check_peel_against_ray_cast("cornell", 1);
 }
 
-TEST_CASE("peel matches a CPU ray cast: atrium", "[runtime][gbuffer]") {
+TEST_CASE("gbuffer: peel matches a CPU ray cast: atrium", "[runtime][gbuffer]") {
     check_peel_against_ray_cast("atrium", 2);
 }
 
-TEST_CASE("peel matches a CPU ray cast: warehouse", "[runtime][gbuffer]") {
+TEST_CASE("gbuffer: peel matches a CPU ray cast: warehouse", "[runtime][gbuffer]") {
     check_peel_against_ray_cast("warehouse", 5);
 }
 
 TEST_CASE(
-    "with a static camera, previous and reproject equal peel after two frames (to float rounding)",
+    "gbuffer: with a static camera, previous and reproject equal peel after two frames (to float "
+    "rounding)",
     "[runtime][gbuffer]") {
     HeadlessContext context;
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
@@ -159,8 +160,9 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("along the camera path reproject disagrees with peel on fewer pixels than previous",
-          "[runtime][gbuffer]") {
+TEST_CASE(
+    "gbuffer: along the camera path reproject disagrees with peel on fewer pixels than previous",
+    "[runtime][gbuffer]") {
     HeadlessContext context;
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
         const Scene scene = make_builtin_scene(scene_name);

@@ -3,6 +3,7 @@
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/shader_loader.hpp"
+#include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -14,25 +15,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TemporaryDirectory {
-    fs::path path;
-    TemporaryDirectory() {
-        path = fs::temp_directory_path() / ("deepgi_loader_test_" + std::to_string(::getpid()));
-        fs::remove_all(path);
+// A scratch folder with the loader's two search directories in it.
+struct LoaderFolders {
+    test::TemporaryFolder folder;
+    fs::path path = folder.path();
+    LoaderFolders() {
         fs::create_directories(path / "shaders");
         fs::create_directories(path / "generated");
     }
-    ~TemporaryDirectory() { fs::remove_all(path); }
-    void write(const std::string& name, const std::string& text) const {
-        std::ofstream(path / name) << text;
-    }
+    void write(const std::string& name, const std::string& text) const { folder.write(name, text); }
 };
 
 }  // namespace
 
-TEST_CASE("includes resolve from the shader and generated directories, once each",
+TEST_CASE("shader loader: includes resolve from the shader and generated directories, once each",
           "[runtime][shader_loader]") {
-    TemporaryDirectory dir;
+    LoaderFolders dir;
     dir.write(
         "shaders/main.frag",
         "#version 450 core\n#include \"common.glsl\"\n#include \"taps.glsl\"\nvoid main() {}\n");
@@ -47,8 +45,9 @@ TEST_CASE("includes resolve from the shader and generated directories, once each
     REQUIRE(source.files.size() == 3);
 }
 
-TEST_CASE("a missing include names the including file and line", "[runtime][shader_loader]") {
-    TemporaryDirectory dir;
+TEST_CASE("shader loader: a missing include names the including file and line",
+          "[runtime][shader_loader]") {
+    LoaderFolders dir;
     dir.write("shaders/main.frag",
               "#version 450 core\n\n#include \"absent.glsl\"\nvoid main() {}\n");
     ShaderLoader loader({dir.path / "shaders"});
@@ -56,10 +55,10 @@ TEST_CASE("a missing include names the including file and line", "[runtime][shad
                         Catch::Contains("main.frag:3") && Catch::Contains("absent.glsl"));
 }
 
-TEST_CASE("a compile error is reported against the included file and its line",
+TEST_CASE("shader loader: a compile error is reported against the included file and its line",
           "[runtime][shader_loader]") {
     HeadlessContext context;
-    TemporaryDirectory dir;
+    LoaderFolders dir;
     dir.write("shaders/main.frag",
               "#version 450 core\n#include \"helpers.glsl\"\nout vec4 colour;\nvoid main() {\n  "
               "colour = vec4(1.0);\n"
@@ -88,7 +87,7 @@ TEST_CASE("a compile error is reported against the included file and its line",
     }
 }
 
-TEST_CASE("every shipped pass compiles", "[runtime][shader_loader]") {
+TEST_CASE("shader loader: every shipped pass compiles", "[runtime][shader_loader]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     REQUIRE_NOTHROW(loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},

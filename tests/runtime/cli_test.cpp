@@ -2,7 +2,7 @@
 // and writes nothing; the same command twice gives the same bytes; --dump
 // writes finite PFM images.
 #include "deepgi/image_io.hpp"
-#include "test_support.hpp"
+#include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -60,7 +60,7 @@ void require_one_line_error(const std::string& arguments, const std::string& exp
 
 }  // namespace
 
-TEST_CASE("bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
+TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
     require_one_line_error("--headless --size 0x90", "--size");
     require_one_line_error("--headless --size big", "--size");
     require_one_line_error("--headless --size 160x90 --generator delay", "--generator");
@@ -71,7 +71,7 @@ TEST_CASE("bad arguments give a one-line error and exit status 2", "[runtime][cl
     require_one_line_error("--headless --size 160x90 --view sideways", "--view");
 }
 
-TEST_CASE("bad scenes give a one-line error and exit status 2", "[runtime][cli]") {
+TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][cli]") {
     const fs::path dir = scratch();
     std::ofstream(dir / "broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ";
     std::ofstream(dir / "empty.gltf") << R"({ "asset": { "version": "2.0" } })";
@@ -98,13 +98,13 @@ TEST_CASE("bad scenes give a one-line error and exit status 2", "[runtime][cli]"
         "not glTF");
 }
 
-TEST_CASE("an output directory that does not exist is an input error", "[runtime][cli]") {
+TEST_CASE("cli: an output directory that does not exist is an input error", "[runtime][cli]") {
     const RunResult result = run_deepgi("--headless --size 16x9 --output /nonexistent-dir/out.png");
     REQUIRE(result.status == 2);
     REQUIRE(result.stderr_text.find("does not exist") != std::string::npos);
 }
 
-TEST_CASE("the same command twice writes identical images", "[runtime][cli]") {
+TEST_CASE("cli: the same command twice writes identical images", "[runtime][cli]") {
     const fs::path dir = scratch();
     for (const char* generator : {"peel", "reproject"}) {
         const std::string common = fmt::format(
@@ -120,7 +120,7 @@ TEST_CASE("the same command twice writes identical images", "[runtime][cli]") {
     }
 }
 
-TEST_CASE("the dump option writes every pass output as finite PFM images", "[runtime][cli]") {
+TEST_CASE("cli: the dump option writes every pass output as finite PFM images", "[runtime][cli]") {
     const fs::path dir = scratch() / "dump";
     fs::remove_all(dir);
     const RunResult result = run_deepgi(
@@ -137,7 +137,7 @@ TEST_CASE("the dump option writes every pass output as finite PFM images", "[run
           "tonemap-colour"}) {
         INFO(name);
         const deepgi::FloatImage image = deepgi::read_pfm(dir / (std::string(name) + ".pfm"));
-        REQUIRE(deepgi::testing::all_finite(image));
+        REQUIRE(deepgi::test::all_finite(image));
         ++files;
     }
     const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
@@ -146,7 +146,8 @@ TEST_CASE("the dump option writes every pass output as finite PFM images", "[run
     REQUIRE(files == 13);
 }
 
-TEST_CASE("a glTF file renders with its base colour factor and emissive", "[runtime][cli][gltf]") {
+TEST_CASE("cli: a glTF file renders with its base colour factor and emissive",
+          "[runtime][cli][gltf]") {
     const fs::path dir = scratch();
     // A 2 m square facing +z, no normals (flat normals are derived), one material.
     std::ofstream(dir / "square.gltf")
