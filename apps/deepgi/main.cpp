@@ -125,7 +125,9 @@ int main(int argc, char** argv) {
                  "With --headless: render in a hidden GLFW window instead of EGL (needs an X "
                  "server, e.g. xvfb-run)");
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
-    app.add_option("--size", options.size, "Image size WIDTHxHEIGHT");
+    app.add_option(
+        "--size", options.size,
+        fmt::format("Image size WIDTHxHEIGHT (1 to {} per side)", deepgi::limits::max_image_side));
     app.add_option("--frames", options.frames, "Frames to render before writing the output");
     app.add_option("--output", options.output, "PNG file to write (headless)");
     app.add_option("--generator", options.generator,
@@ -134,8 +136,10 @@ int main(int argc, char** argv) {
                    "Minimum camera-space distance of layer 1 behind layer 0 (m)");
     app.add_option("--exposure", options.exposure, "Exposure multiplier before the tonemap");
     app.add_option("--guard-band", options.guard_band,
-                   "Guard band on every side, as a fraction of the height");
-    app.add_option("--view", options.view, deepgi::enum_name_list<deepgi::DebugView>());
+                   fmt::format("Guard band on every side, as a fraction of the height (0 to {})",
+                               deepgi::limits::max_guard_band_fraction));
+    app.add_option("--view", options.view,
+                   "Image to show: " + deepgi::enum_name_list<deepgi::DebugView>());
     app.add_option("--dump", options.dump,
                    "Directory for 32-bit float PFM images of every pass output (headless)");
     app.add_option("--timing", options.timing,
@@ -149,17 +153,21 @@ int main(int argc, char** argv) {
                  "Turn GL errors into an error that names the pass (KHR_debug callback)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-layers", options.ao.layers,
-                   "Deep SAO: G-buffer layers the taps test, 1 or 2")
+                   fmt::format("Deep SAO: G-buffer layers the taps test, 1 to {}",
+                               deepgi::limits::max_ao_layers))
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
         ->capture_default_str();
     app.add_option("--ao-bias", options.ao.bias, "Deep SAO: bias beta (m)")->capture_default_str();
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
         ->capture_default_str();
-    app.add_option("--ao-q", options.ao.q, "Deep SAO: tap radius (px) per MIP level step")
+    app.add_option("--ao-q", options.ao.q,
+                   fmt::format("Deep SAO: tap radius (px) per MIP level step (at least {})",
+                               deepgi::limits::min_ao_q))
         ->capture_default_str();
     app.add_option("--ao-max-mip", options.ao.max_mip_level,
-                   "Deep SAO: deepest depth-pyramid level")
+                   fmt::format("Deep SAO: deepest depth-pyramid level (0 to {})",
+                               deepgi::limits::max_ao_mip_level))
         ->capture_default_str();
 
     try {
