@@ -4,6 +4,7 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
+#include "reference_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -139,6 +140,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Subcommands take over the whole command line.
+    if (argc > 1 && std::string(argv[1]) == "reference")
+        return deepgi_app::run_reference_command(argc, argv);
     Options options;
     CLI::App app{"deepgi: deep G-buffer demo renderer (OpenGL 4.5)"};
     app.add_flag("--headless", options.headless,
