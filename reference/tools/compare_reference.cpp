@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
         for (const char* name : {"ao-raw", "ao-blurred"}) {
             const auto estimate = deepgi::read_pfm(dump / (std::string(name) + ".pfm"));
             double sum_abs = 0.0, sum = 0.0;
-            long long count = 0;
+            long long count = 0, open = 0, open_dark = 0;
             for (int y = guard; y < truth.height - guard; ++y) {
                 for (int x = guard; x < truth.width - guard; ++x) {
                     // Only where both agree on the surface: silhouette pixels
@@ -61,10 +61,16 @@ int main(int argc, char** argv) {
                     sum_abs += std::abs(error);
                     sum += error;
                     ++count;
+                    // Open surface: nothing within r in the truth.
+                    if (truth.at(x, y) >= 0.9999f) {
+                        ++open;
+                        if (estimate.at(x, y) < 0.99f) ++open_dark;
+                    }
                 }
             }
-            fmt::print("{}: {} pixels, MAE {:.4f}, bias {:+.4f}\n", name, count,
-                       count ? sum_abs / count : 0.0, count ? sum / count : 0.0);
+            fmt::print(
+                "{}: {} pixels, MAE {:.4f}, bias {:+.4f}, open pixels below 0.99: {} of {}\n", name,
+                count, count ? sum_abs / count : 0.0, count ? sum / count : 0.0, open_dark, open);
         }
     } catch (const std::exception& error) {
         fmt::print(stderr, "deepgi_compare_reference: {}\n", error.what());
