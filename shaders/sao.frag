@@ -37,6 +37,16 @@ float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
   return (1.0 - vv / radius_squared) * max((vn - bias) / sqrt(vv + obscurance_epsilon), 0.0);
 }
 
+// The level-0 pixel whose depth texel `texel` of `level` holds: walks the
+// rotated-grid choice of depth_pyramid.comp back down to level 0.
+ivec2 source_pixel(ivec2 texel, int level, ivec2 size) {
+  for (int l = level; l > 0; --l) {
+    ivec2 corner = ivec2((texel.y & 1) ^ 1, (texel.x & 1) ^ 1);
+    texel = min(2 * texel + corner, max(size >> (l - 1), ivec2(1)) - 1);
+  }
+  return texel;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float depth = texelFetch(depth_pyramid, pixel, 0).r;
@@ -74,7 +84,11 @@ void main() {
     // with a lod that varies across the SIMD lanes wrongly, and taps vanish.
     ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
-    vec2 tap_centre = vec2(tap) + 0.5;
+    // Rebuild the tap where its depth came from: the full-resolution pixel
+    // the rotated-grid texel copies (depth_pyramid.comp), not the tap's own
+    // pixel. A depth put at the wrong pixel is a point off the surface, which
+    // shades open floors seen at a grazing angle.
+    vec2 tap_centre = vec2(source_pixel(texel, level, size)) + 0.5;
     float occlusion = 0.0;
     if (tap_depths.r > 0.0) {
       vec3 v = camera_position_at(tap_centre, tap_depths.r, frame.internal_size, frame.camera_ray_scale) - position;

@@ -94,12 +94,22 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                 const FloatImage& mip = inputs.pyramid[std::size_t(level)];
                 const int texel_x = std::min(tap_x >> level, mip.width - 1);
                 const int texel_y = std::min(tap_y >> level, mip.height - 1);
+                // The level-0 pixel the texel's depth was copied from: each
+                // level takes corner ((y & 1) ^ 1, (x & 1) ^ 1) of its 2x2
+                // block in the level below, clamped at odd sizes.
+                int source_x = texel_x, source_y = texel_y;
+                for (int l = level; l > 0; --l) {
+                    const FloatImage& finer = inputs.pyramid[std::size_t(l - 1)];
+                    const int corner_x = (source_y & 1) ^ 1, corner_y = (source_x & 1) ^ 1;
+                    source_x = std::min(2 * source_x + corner_x, finer.width - 1);
+                    source_y = std::min(2 * source_y + corner_y, finer.height - 1);
+                }
                 float occlusion = 0.0f;
                 for (int layer = 0; layer < settings.layers; ++layer) {
                     const float tap_depth = mip.at(texel_x, texel_y, layer);
                     if (tap_depth <= 0.0f) continue;
-                    const glm::vec3 v = camera_position(float(tap_x) + 0.5f, float(tap_y) + 0.5f,
-                                                        tap_depth, inputs) -
+                    const glm::vec3 v = camera_position(float(source_x) + 0.5f,
+                                                        float(source_y) + 0.5f, tap_depth, inputs) -
                                         position;
                     occlusion =
                         std::max(occlusion, obscurance(v, normal, radius_squared, settings.bias));
