@@ -72,6 +72,9 @@
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20      // int: the MIP level being written
 #define DEEPGI_UNIFORM_SAO_PARAMETERS 21     // vec4: world radius (m), bias (m), intensity, q (px)
 #define DEEPGI_UNIFORM_SAO_MAX_MIP 22        // int: deepest pyramid level a tap may read
+#define DEEPGI_UNIFORM_SAO_METHOD 25         // int: DEEPGI_AO_METHOD_*
+#define DEEPGI_AO_METHOD_PUBLISHED 0         // 1 - sqrt(pi/N * sum AO(X, Y))
+#define DEEPGI_AO_METHOD_SOLID_ANGLE 1       // the reference's integral over the seen surface
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23     // ivec2: (1, 0) horizontal, (0, 1) vertical
 #define DEEPGI_UNIFORM_BLUR_PARAMETERS 24    // vec4: depth tolerance, normal power, plane tolerance, unused
 

@@ -39,6 +39,7 @@ struct Options {
     bool camera_path = false;
     bool print_timings = false;
     deepgi::AoSettings ao;  // deep SAO flags (--ao-*)
+    std::string ao_method = "solid-angle";
 };
 
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
@@ -100,6 +101,13 @@ deepgi::RenderSettings settings_from(const Options& options) {
         throw deepgi::InputError(
             fmt::format("--timing '{}' is not one of auto, cpu, gpu", options.timing));
     settings.ao = options.ao;
+    if (options.ao_method == "published")
+        settings.ao.method = 0;
+    else if (options.ao_method == "solid-angle")
+        settings.ao.method = 1;
+    else
+        throw deepgi::InputError(fmt::format(
+            "--ao-method '{}' is not one of solid-angle, published", options.ao_method));
     return settings;
 }
 
@@ -176,6 +184,10 @@ int main(int argc, char** argv) {
     // Deep SAO (docs/deep-sao.md); values are checked by the renderer.
     app.add_option("--ao-layers", options.ao.layers,
                    "Deep SAO: G-buffer layers the taps test, 1 or 2")
+        ->capture_default_str();
+    app.add_option("--ao-method", options.ao_method,
+                   "Deep SAO estimator: solid-angle (the reference's integral) or published "
+                   "(1 - sqrt(...))")
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
         ->capture_default_str();

@@ -48,6 +48,9 @@ struct AoSettings {
     float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
+    // DEEPGI_AO_METHOD_* of shared_constants.h: 0 the published 1 - sqrt(...)
+    // estimator, 1 the solid-angle estimator of the reference's integral.
+    int method = 1;
 };
 
 struct RenderSettings {

@@ -23,6 +23,9 @@ void validate_ao_settings(const AoSettings& settings) {
     if (settings.layers != 1 && settings.layers != 2) {
         throw InputError(fmt::format("AO layers must be 1 or 2, got {}", settings.layers));
     }
+    if (settings.method != DEEPGI_AO_METHOD_PUBLISHED &&
+        settings.method != DEEPGI_AO_METHOD_SOLID_ANGLE)
+        throw InputError(fmt::format("AO method must be 0 or 1, got {}", settings.method));
     if (settings.max_mip_level < 0 || settings.max_mip_level > 15) {
         throw InputError(
             fmt::format("AO max MIP level must be in [0, 15], got {}", settings.max_mip_level));
@@ -56,6 +59,7 @@ void run_sao_pass(const SaoPass& pass, const AoSettings& settings, const DepthPy
     glProgramUniform4f(program, DEEPGI_UNIFORM_SAO_PARAMETERS, settings.radius, settings.bias,
                        settings.intensity, settings.q);
     glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP, pyramid.levels - 1);
+    glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_METHOD, settings.method);
     glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.get());
     glUseProgram(program);
     draw_fullscreen_triangle(empty_vertex_array);
