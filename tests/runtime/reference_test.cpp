@@ -5,7 +5,12 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/constants.hpp>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 
 namespace {
 
@@ -133,4 +138,74 @@ TEST_CASE("reference: images do not depend on the thread count", "[reference]") 
     settings.seed = 2;
     const auto reseeded = deepgi::render_reference(rays, camera, settings);
     REQUIRE(reseeded.ambient_visibility.pixels != one.ambient_visibility.pixels);
+}
+
+TEST_CASE("reference: the occlusion split sums to 1 - AV and finds occluders only layer 1 sees",
+          "[reference]") {
+    auto settings = small_settings(64, 36);
+    settings.rays.min_rays = settings.rays.max_rays = 512;
+    auto split_totals = [&](const char* name) {
+        const deepgi::Scene scene = deepgi::make_builtin_scene(name);
+        const deepgi::RayScene rays(scene);
+        const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
+        glm::dvec3 total(0.0);
+        for (std::size_t i = 0; i < images.ambient_visibility.pixels.size(); ++i) {
+            const glm::dvec3 part(images.occlusion_split.pixels[3 * i],
+                                  images.occlusion_split.pixels[3 * i + 1],
+                                  images.occlusion_split.pixels[3 * i + 2]);
+            REQUIRE(part.x + part.y + part.z ==
+                    Approx(1.0 - images.ambient_visibility.pixels[i]).margin(1e-5));
+            total += part;
+        }
+        return total;
+    };
+    // Floor and wall of a crease are both in plain view: layer 0 sees nearly
+    // every occluder (the rest lies past the guard band).
+    const glm::dvec3 crease = split_totals("ref-crease");
+    INFO("crease split " << crease.x << " " << crease.y << " " << crease.z);
+    REQUIRE(crease.x > 0.0);
+    REQUIRE(crease.y < 0.01 * crease.x);
+    // The bench behind the posts: part of what occludes the floor is hidden
+    // from layer 0 and seen by layer 1.
+    const glm::dvec3 bench = split_totals("ref-bench");
+    INFO("bench split " << bench.x << " " << bench.y << " " << bench.z);
+    REQUIRE(bench.y > 0.01 * bench.x);
+}
+
+TEST_CASE("reference: deepgi reference writes the images, and bad input writes nothing",
+          "[reference]") {
+    namespace fs = std::filesystem;
+    const fs::path directory = fs::temp_directory_path() / "deepgi_reference_cli_test";
+    fs::remove_all(directory);
+    const std::string command = std::string(DEEPGI_EXECUTABLE) +
+                                " reference --scene ref-slab --size 16x9 --rays 256 "
+                                "--min-rays 256 --threads 2 --output " +
+                                directory.string() + " > /dev/null";
+    REQUIRE(std::system(command.c_str()) == 0);
+    const auto visibility = deepgi::read_pfm(directory / "reference-ao-visibility.pfm");
+    // The command renders what the library renders with the same settings.
+    deepgi::ReferenceSettings settings;
+    settings.render.width = 16;
+    settings.render.height = 9;
+    settings.rays.min_rays = settings.rays.max_rays = 256;
+    const deepgi::Scene scene = deepgi::make_builtin_scene("ref-slab");
+    const deepgi::RayScene rays(scene);
+    const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
+    REQUIRE(visibility.pixels == images.ambient_visibility.pixels);
+    for (const char* name : {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
+                             "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
+                             "reference-ao-standard-error.pfm", "reference-ao-rays.pfm"})
+        REQUIRE(fs::exists(directory / name));
+    fs::remove_all(directory);
+
+    for (const char* arguments : {"--size 16x --output", "--size 16x9 --rays 0 --output",
+                                  "--size 16x9 --scene nosuch --output"}) {
+        const std::string bad = std::string(DEEPGI_EXECUTABLE) + " reference " + arguments + " " +
+                                directory.string() + " 2> /dev/null";
+        const int status = std::system(bad.c_str());
+        INFO(arguments);
+        REQUIRE(WIFEXITED(status));
+        REQUIRE(WEXITSTATUS(status) == 2);
+        REQUIRE(!fs::exists(directory));
+    }
 }
