@@ -53,6 +53,7 @@
 #define DEEPGI_UNIFORM_SAO_PARAMETERS 21   // vec4: world radius (m), bias (m), intensity, q (px)
 #define DEEPGI_UNIFORM_SAO_MAX_MIP 22      // int: deepest pyramid level a tap may read
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
+#define DEEPGI_UNIFORM_SAO_METHOD 25      // int: DEEPGI_AO_METHOD_*
 #define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them

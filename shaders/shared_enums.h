@@ -26,6 +26,9 @@
 #define DEEPGI_VIEW_DIRECT_LAYER0 9
 #define DEEPGI_VIEW_DIRECT_LAYER1 10
 
+#define DEEPGI_AO_METHOD_PUBLISHED 0    // 1 - sqrt(pi/N * sum AO(X, Y))
+#define DEEPGI_AO_METHOD_SOLID_ANGLE 1  // the reference's integral over the seen surface
+
 #define DEEPGI_VIEW_AO_RAW 11
 #define DEEPGI_VIEW_AO_BLURRED 12
 

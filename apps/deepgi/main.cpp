@@ -4,6 +4,7 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
+#include "reference_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -39,6 +40,7 @@ struct Options {
     bool print_timings = false;
     bool gl_debug = false;
     deepgi::AoSettings ao;
+    std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
 };
 
 // Only the format; the range is checked with every other setting by
@@ -75,6 +77,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.exposure = options.exposure;
     settings.guard_band_fraction = options.guard_band;
     settings.ao = options.ao;
+    settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     settings.gl_debug = options.gl_debug;
     deepgi::validate(settings);
     return settings;
@@ -117,6 +120,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Subcommands take over the whole command line.
+    if (argc > 1 && std::string(argv[1]) == "reference")
+        return deepgi_app::run_reference_command(argc, argv);
     Options options;
     CLI::App app{"deepgi: deep G-buffer demo renderer (OpenGL 4.5)"};
     app.add_flag("--headless", options.headless,
@@ -155,6 +161,11 @@ int main(int argc, char** argv) {
     app.add_option("--ao-layers", options.ao.layers,
                    fmt::format("Deep SAO: G-buffer layers the taps test, 1 to {}",
                                deepgi::limits::max_ao_layers))
+        ->capture_default_str();
+    app.add_option("--ao-method", options.ao_method,
+                   fmt::format("Deep SAO estimator: {} (solid-angle is the reference's "
+                               "integral, published is 1 - sqrt(...))",
+                               deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
         ->capture_default_str();

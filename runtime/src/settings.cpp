@@ -40,6 +40,11 @@ constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
     {TimingMode::gpu, "gpu"},
 }};
 
+constexpr std::array<EnumName<AoMethod>, 2> ao_method_table = {{
+    {AoMethod::solid_angle, "solid-angle"},
+    {AoMethod::published, "published"},
+}};
+
 template <class Enum>
 Enum parse_or_throw(std::string_view option, std::string_view text) {
     if (auto value = parse_enum<Enum>(text)) return *value;
@@ -73,6 +78,9 @@ std::span<const EnumName<DebugView>> enum_names(DebugView) {
 std::span<const EnumName<TimingMode>> enum_names(TimingMode) {
     return timing_table;
 }
+std::span<const EnumName<AoMethod>> enum_names(AoMethod) {
+    return ao_method_table;
+}
 
 Generator parse_generator(std::string_view option, std::string_view text) {
     return parse_or_throw<Generator>(option, text);
@@ -82,6 +90,9 @@ DebugView parse_debug_view(std::string_view option, std::string_view text) {
 }
 TimingMode parse_timing_mode(std::string_view option, std::string_view text) {
     return parse_or_throw<TimingMode>(option, text);
+}
+AoMethod parse_ao_method(std::string_view option, std::string_view text) {
+    return parse_or_throw<AoMethod>(option, text);
 }
 
 void validate(const RenderSettings& settings) {
@@ -98,6 +109,7 @@ void validate(const RenderSettings& settings) {
     check_enum("--generator", settings.generator);
     check_enum("--view", settings.view);
     check_enum("--timing", settings.timing);
+    check_enum("--ao-method", settings.ao.method);
     if (!finite_at_least(settings.min_separation, 0.0f))
         throw InputError("--min-separation must be a finite number of metres >= 0");
     if (!finite_positive(settings.exposure))

@@ -93,19 +93,64 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                 const FloatImage& mip = inputs.pyramid[std::size_t(level)];
                 const int texel_x = std::min(tap_x >> level, mip.width - 1);
                 const int texel_y = std::min(tap_y >> level, mip.height - 1);
+                // The level-0 pixel the texel's depth was copied from: each
+                // level takes corner ((y & 1) ^ 1, (x & 1) ^ 1) of its 2x2
+                // block in the level below, clamped at odd sizes.
+                int source_x = texel_x, source_y = texel_y;
+                for (int l = level; l > 0; --l) {
+                    const FloatImage& finer = inputs.pyramid[std::size_t(l - 1)];
+                    const int corner_x = (source_y & 1) ^ 1, corner_y = (source_x & 1) ^ 1;
+                    source_x = std::min(2 * source_x + corner_x, finer.width - 1);
+                    source_y = std::min(2 * source_y + corner_y, finer.height - 1);
+                }
                 float occlusion = 0.0f;
+                if (settings.method == deepgi::AoMethod::solid_angle) {
+                    // Solid-angle method: the term of the obscurance integral
+                    // over the seen surface (docs/deep-sao.md), tap weight
+                    // alpha_i * (z_Y / z_X)^2 / cos(view angle at Y).
+                    const float footprint = 2.0f * inputs.ray_scale.y * depth / float(height);
+                    const float beta = settings.bias + 0.5f * footprint;
+                    for (int layer = 0; layer < settings.layers; ++layer) {
+                        const float tap_depth = mip.at(texel_x, texel_y, layer);
+                        if (tap_depth <= 0.0f) continue;
+                        const glm::vec3 y = camera_position(
+                            float(source_x) + 0.5f, float(source_y) + 0.5f, tap_depth, inputs);
+                        const FloatImage& normals =
+                            layer == 0 ? inputs.normals : inputs.normals_layer1;
+                        const glm::vec3 tap_normal(normals.at(source_x, source_y, 0),
+                                                   normals.at(source_x, source_y, 1),
+                                                   normals.at(source_x, source_y, 2));
+                        const glm::vec3 v = y - position;
+                        const float vv = glm::dot(v, v);
+                        if (vv >= radius_squared || vv <= 0.0f) continue;
+                        const float length_v = std::sqrt(vv);
+                        const float cos_x = (glm::dot(v, normal) - beta) / length_v;
+                        const float cos_y = std::abs(glm::dot(v, tap_normal)) / length_v;
+                        if (cos_x <= 0.0f || cos_y <= 0.0f) continue;
+                        const float cos_view =
+                            std::max(glm::dot(tap_normal, -glm::normalize(y)), 0.1f);
+                        const float ratio = tap_depth / depth;
+                        occlusion = std::max(occlusion, tap.alpha * ratio * ratio *
+                                                            (1.0f - vv / radius_squared) * cos_x *
+                                                            cos_y / (vv * cos_view));
+                    }
+                    sum += occlusion;
+                    continue;
+                }
                 for (int layer = 0; layer < settings.layers; ++layer) {
                     const float tap_depth = mip.at(texel_x, texel_y, layer);
                     if (tap_depth <= 0.0f) continue;
-                    const glm::vec3 v = camera_position(float(tap_x) + 0.5f, float(tap_y) + 0.5f,
-                                                        tap_depth, inputs) -
+                    const glm::vec3 v = camera_position(float(source_x) + 0.5f,
+                                                        float(source_y) + 0.5f, tap_depth, inputs) -
                                         position;
                     occlusion =
                         std::max(occlusion, obscurance(v, normal, radius_squared, settings.bias));
                 }
                 sum += occlusion;
             }
-            const float visibility = std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum));
+            const float visibility = settings.method == deepgi::AoMethod::solid_angle
+                                         ? std::max(0.0f, 1.0f - 2.0f * radius_squared / n * sum)
+                                         : std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum));
             result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
                 std::pow(visibility, settings.intensity);
         }

@@ -23,6 +23,7 @@ struct SaoInputs {
     std::vector<FloatImage>
         pyramid;                // level m: channel 0 layer-0 depth, 1 layer-1 depth; 0 = no surface
     FloatImage normals;         // layer-0 camera-space normals, 3 channels
+    FloatImage normals_layer1;  // layer-1 normals (read by the solid-angle method)
     glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
 };
 

@@ -29,6 +29,7 @@ FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings
         frame.inputs.pyramid.push_back(renderer.read_pass_output(name));
     }
     frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
+    frame.inputs.normals_layer1 = renderer.read_pass_output("gbuffer-normal-layer1");
     frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
     frame.raw = renderer.read_pass_output("ao-raw");
     frame.blurred = renderer.read_pass_output("ao-blurred");
@@ -63,10 +64,14 @@ void check_against_reference(const Scene& scene, const RenderSettings& settings,
     const FrameReadBack frame = render_and_read(scene, settings, loader);
     const FloatImage expected = reference_ambient_visibility(frame.inputs, taps, settings.ao);
     const Agreement agreement = compare(frame.raw, expected, 1e-3f);
-    INFO("scene " << scene.name << ", " << taps.size() << " taps, layers " << settings.ao.layers
-                  << ": " << agreement.fraction_within * 100.0 << "% within 1e-3, worst "
+    INFO("scene " << scene.name << ", method " << deepgi::to_string(settings.ao.method) << ", " << taps.size()
+                  << " taps, layers " << settings.ao.layers << ": "
+                  << agreement.fraction_within * 100.0 << "% within 1e-3, worst "
                   << agreement.worst);
-    CHECK(agreement.occluded > int(expected.pixels.size() / 20));
+    // Some pixels must be occluded, or the comparison checks only ones. The
+    // solid-angle method darkens less (as the ray-traced reference does), so
+    // the bar is one pixel in a hundred, not one in twenty.
+    CHECK(agreement.occluded > int(expected.pixels.size() / 100));
     CHECK(agreement.fraction_within >= 0.999);
     CHECK(agreement.worst <= 1e-2f);
 }
@@ -74,11 +79,14 @@ void check_against_reference(const Scene& scene, const RenderSettings& settings,
 TEST_CASE("sao: deep SAO matches the CPU evaluation with the build-time taps", "[reference]") {
     const auto taps = build_time_ao_taps();
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    for (int layers : {2, 1}) {
-        RenderSettings settings = small_settings(160, 90);
-        settings.ao.layers = layers;
-        check_against_reference(make_builtin_scene("cornell"), settings, loader, taps);
-        check_against_reference(occluded_floor(), settings, loader, taps);
+    for (deepgi::AoMethod method : {deepgi::AoMethod::published, deepgi::AoMethod::solid_angle}) {
+        for (int layers : {2, 1}) {
+            RenderSettings settings = small_settings(160, 90);
+            settings.ao.layers = layers;
+            settings.ao.method = method;
+            check_against_reference(make_builtin_scene("cornell"), settings, loader, taps);
+            check_against_reference(occluded_floor(), settings, loader, taps);
+        }
     }
 }
 

@@ -89,6 +89,12 @@ std::vector<std::string> builtin_scene_names();
 // Throws InputError for an unknown name.
 Scene make_builtin_scene(std::string_view name);
 
+// Small scenes for measuring deep SAO against the ray-traced reference
+// (ref-crease, ref-slab, ref-board, ref-bench; docs/reference.md). Accepted by
+// make_builtin_scene too, but not listed among the built-in scenes.
+std::vector<std::string> reference_scene_names();
+Scene make_reference_scene(std::string_view name);
+
 // glTF 2.0 (.gltf or .glb). Throws InputError for a missing, malformed or
 // unsupported file.
 Scene load_gltf_scene(const std::filesystem::path& path);

@@ -37,6 +37,12 @@ enum class DebugView {
 
 enum class TimingMode { automatic, cpu, gpu };
 
+// Deep SAO estimators (docs/deep-sao.md).
+enum class AoMethod {
+    published = DEEPGI_AO_METHOD_PUBLISHED,      // 1 - sqrt(...), kept for comparison
+    solid_angle = DEEPGI_AO_METHOD_SOLID_ANGLE,  // the reference's integral over the seen surface
+};
+
 // One row of an enum's name table.
 template <class Enum>
 struct EnumName {
@@ -48,6 +54,7 @@ struct EnumName {
 std::span<const EnumName<Generator>> enum_names(Generator);
 std::span<const EnumName<DebugView>> enum_names(DebugView);
 std::span<const EnumName<TimingMode>> enum_names(TimingMode);
+std::span<const EnumName<AoMethod>> enum_names(AoMethod);
 
 // "?" for a value outside the table.
 template <class Enum>
@@ -76,6 +83,7 @@ std::string enum_name_list() {
 Generator parse_generator(std::string_view option, std::string_view text);
 DebugView parse_debug_view(std::string_view option, std::string_view text);
 TimingMode parse_timing_mode(std::string_view option, std::string_view text);
+AoMethod parse_ao_method(std::string_view option, std::string_view text);
 
 // Limits the validation enforces, exported so the CLI help and the ImGui
 // sliders show the same ranges.
@@ -98,6 +106,7 @@ struct AoSettings {
     float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
+    AoMethod method = AoMethod::solid_angle;
 };
 
 struct RenderSettings {

@@ -34,6 +34,7 @@ public:
                            settings.intensity, settings.q);
         glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP,
                            frame.integer("depth_pyramid.max_level"));
+        glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_METHOD, static_cast<int>(settings.method));
         glUseProgram(program);
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("ao.raw", visibility_.get());

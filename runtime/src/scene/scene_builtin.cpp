@@ -254,6 +254,7 @@ Scene make_builtin_scene(std::string_view name) {
     if (name == "cornell") return make_cornell();
     if (name == "atrium") return make_atrium();
     if (name == "warehouse") return make_warehouse();
+    if (name.substr(0, 4) == "ref-") return make_reference_scene(name);
     throw InputError(fmt::format(
         "unknown scene '{}' (built-in scenes: cornell, atrium, warehouse; or a .gltf/.glb file)",
         name));

@@ -1,0 +1,114 @@
+// The scene's triangles in an Embree 3 BVH, with the two queries the
+// reference needs: any nearest hit (occlusion rays) and the nearest front
+// face (camera rays, matching the G-buffer's back-face culling).
+#include "deepgi/errors.hpp"
+#include "deepgi/reference.hpp"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace deepgi {
+
+struct RayScene::State {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<glm::vec3> face_normals;  // unit, counter-clockwise side
+    ~State() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+RayScene::RayScene(const Scene& scene) : state_(std::make_unique<State>()) {
+    State& s = *state_;
+    s.device = rtcNewDevice(nullptr);
+    if (!s.device) throw GraphicsError("cannot create an Embree device");
+    s.scene = rtcNewScene(s.device);
+    // Robust traversal: rays that graze an edge between two triangles of a
+    // plane must not slip through the crack.
+    rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
+
+    const std::size_t triangles = scene.indices.size() / 3;
+    RTCGeometry geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+        std::max<std::size_t>(scene.vertices.size(), 1)));
+    for (std::size_t i = 0; i < scene.vertices.size(); ++i) {
+        vertices[3 * i + 0] = scene.vertices[i].position.x;
+        vertices[3 * i + 1] = scene.vertices[i].position.y;
+        vertices[3 * i + 2] = scene.vertices[i].position.z;
+    }
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+    s.face_normals.resize(triangles);
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const std::uint32_t a = scene.indices[3 * t], b = scene.indices[3 * t + 1],
+                            c = scene.indices[3 * t + 2];
+        if (a >= scene.vertices.size() || b >= scene.vertices.size() || c >= scene.vertices.size())
+            throw InputError(
+                fmt::format("scene '{}': triangle {} indexes past the vertices", scene.name, t));
+        indices[3 * t + 0] = a;
+        indices[3 * t + 1] = b;
+        indices[3 * t + 2] = c;
+        const glm::vec3 p0 = scene.vertices[a].position, p1 = scene.vertices[b].position,
+                        p2 = scene.vertices[c].position;
+        const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+        const float length = glm::length(n);
+        s.face_normals[t] = length > 0.0f ? n / length : glm::vec3(0.0f);
+        lo = glm::min(lo, glm::min(p0, glm::min(p1, p2)));
+        hi = glm::max(hi, glm::max(p0, glm::max(p1, p2)));
+    }
+    if (triangles > 0) scale_ = std::max(glm::length(hi - lo), 1e-6f);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(s.scene, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(s.scene);
+}
+
+RayScene::~RayScene() = default;
+
+RayScene::Hit RayScene::intersect(glm::vec3 origin, glm::vec3 direction, float t_near,
+                                  float t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit query{};
+    query.ray.org_x = origin.x;
+    query.ray.org_y = origin.y;
+    query.ray.org_z = origin.z;
+    query.ray.dir_x = direction.x;
+    query.ray.dir_y = direction.y;
+    query.ray.dir_z = direction.z;
+    query.ray.tnear = t_near;
+    query.ray.tfar = t_far;
+    query.ray.mask = 0xFFFFFFFFu;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(state_->scene, &context, &query);
+    Hit hit;
+    if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.hit = true;
+    hit.distance = query.ray.tfar;
+    hit.primitive = query.hit.primID;
+    hit.normal = state_->face_normals[query.hit.primID];
+    return hit;
+}
+
+RayScene::Hit RayScene::intersect_front(glm::vec3 origin, glm::vec3 direction, float t_near,
+                                        float t_far) const {
+    // Step past back faces; a few dozen layers at most in practice.
+    for (int guard = 0; guard < 1024; ++guard) {
+        Hit hit = intersect(origin, direction, t_near, t_far);
+        if (!hit.hit || glm::dot(hit.normal, direction) < 0.0f) return hit;
+        t_near = std::nextafter(hit.distance, std::numeric_limits<float>::infinity()) +
+                 hit.distance * 1e-6f;
+    }
+    return {};
+}
+
+}  // namespace deepgi

@@ -1,0 +1,253 @@
+// Monte Carlo ambient visibility on the G-buffer's pixel grid. Every pixel
+// draws its rays from its own random stream (seed, pixel index), so the
+// images do not depend on the number of threads or on scheduling.
+#include "deepgi/reference.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+namespace deepgi {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// SplitMix64: small, fast, and good enough to drive per-pixel streams.
+struct Random {
+    std::uint64_t state;
+    std::uint64_t next() {
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    // Uniform in [0, 1) with 53 random bits.
+    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+};
+
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
+    Random mix{seed ^ (index * 0xD1B54A32D192ED03ull)};
+    mix.next();
+    return mix.next();
+}
+
+// Orthonormal tangent frame around a unit normal (branchless, Duff et al.).
+void tangent_frame(glm::dvec3 n, glm::dvec3& t, glm::dvec3& b) {
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double c = n.x * n.y * a;
+    t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+    b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+}  // namespace
+
+AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
+                               float radius, const AoRayBudget& budget, std::uint64_t seed,
+                               const LayerClassifier& classify) {
+    AoSample result;
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
+    glm::dvec3 t, b;
+    tangent_frame(n, t, b);
+    // Leave the surface by a hair along the normal so the first triangle is
+    // not hit again; relative to the distance from the origin, where float
+    // positions lose their precision.
+    const float offset =
+        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
+        1e-6f * radius;
+    const glm::vec3 origin = position + glm::vec3(n) * offset;
+    const double r2 = double(radius) * double(radius);
+
+    Random random{seed};
+    double sum = 0.0, sum_squares = 0.0, hits = 0.0;
+    double split[3] = {0.0, 0.0, 0.0};
+    long long rays = 0;
+    const int batch = std::max(1, budget.batch);
+    while (rays < budget.max_rays) {
+        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++rays) {
+            // Cosine-weighted direction: uniform on the unit disk, lifted.
+            const double u1 = random.uniform(), u2 = random.uniform();
+            const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
+            const double z = std::sqrt(std::max(0.0, 1.0 - u1));
+            const glm::dvec3 w = t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z;
+            const RayScene::Hit hit = scene.intersect(origin, glm::vec3(w), 0.0f, radius);
+            if (!hit.hit) continue;
+            const double d = hit.distance + offset * z;  // from X, not the offset origin
+            const double occlusion = std::max(0.0, 1.0 - d * d / r2);
+            sum += occlusion;
+            sum_squares += occlusion * occlusion;
+            hits += 1.0;
+            if (classify) {
+                const int layer = classify(origin + glm::vec3(w) * hit.distance);
+                split[layer == 0 ? 0 : layer == 1 ? 1 : 2] += occlusion;
+            }
+        }
+        if (rays >= budget.min_rays) {
+            const double mean = sum / double(rays);
+            const double variance = std::max(0.0, sum_squares / double(rays) - mean * mean) *
+                                    double(rays) / std::max(1.0, double(rays) - 1.0);
+            if (std::sqrt(variance / double(rays)) < budget.target_error) break;
+        }
+    }
+    const double count = double(std::max<long long>(rays, 1));
+    const double mean = sum / count;
+    const double variance =
+        std::max(0.0, sum_squares / count - mean * mean) * count / std::max(1.0, count - 1.0);
+    result.visibility = 1.0 - mean;
+    result.hit_visibility = 1.0 - hits / count;
+    result.standard_error = std::sqrt(variance / count);
+    result.occlusion_layer0 = split[0] / count;
+    result.occlusion_layer1 = split[1] / count;
+    result.occlusion_neither = classify ? split[2] / count : mean;
+    result.rays = int(rays);
+    return result;
+}
+
+glm::vec3 camera_ray_direction(const Camera& camera, const RenderSettings& settings, float x,
+                               float y) {
+    // As camera_position_at() in gbuffer_encoding.glsl: ndc from the pixel
+    // centre over the internal size, scaled by 1 / P00 and 1 / P11.
+    const FrameLayout layout = frame_layout(settings);
+    const glm::mat4 projection = guard_band_projection(camera, settings);
+    const glm::vec2 ray_scale{1.0f / projection[0][0], 1.0f / projection[1][1]};
+    const glm::vec2 ndc =
+        glm::vec2(x, y) *
+            glm::vec2(1.0f / float(layout.internal_width), 1.0f / float(layout.internal_height)) *
+            2.0f -
+        1.0f;
+    return {ndc * ray_scale, -1.0f};
+}
+
+ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
+                                 const ReferenceSettings& settings) {
+    const RenderSettings& render = settings.render;
+    const FrameLayout layout = frame_layout(render);
+    const int w = layout.internal_width, h = layout.internal_height;
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    const glm::mat4 view = camera_view_matrix(camera);
+    const glm::mat4 camera_to_world = glm::inverse(view);
+    const glm::vec3 eye = glm::vec3(camera_to_world[3]);
+    const glm::mat4 projection = guard_band_projection(camera, render);
+    const glm::vec2 ray_scale{1.0f / projection[0][0], 1.0f / projection[1][1]};
+
+    auto image = [&](int channels, float fill) {
+        FloatImage result;
+        result.width = w;
+        result.height = h;
+        result.channels = channels;
+        result.pixels.assign(pixels * std::size_t(channels), fill);
+        return result;
+    };
+    ReferenceImages out;
+    out.depth_layer0 = image(1, 0.0f);
+    out.depth_layer1 = image(1, 0.0f);
+    out.ambient_visibility = image(1, 1.0f);
+    out.hit_visibility = image(1, 1.0f);
+    out.occlusion_split = image(3, 0.0f);
+    out.standard_error = image(1, 0.0f);
+    out.rays = image(1, 0.0f);
+    std::vector<glm::vec3> positions(pixels), normals(pixels);
+
+    const int thread_count = settings.threads > 0
+                                 ? settings.threads
+                                 : int(std::max(1u, std::thread::hardware_concurrency()));
+    auto parallel_rows = [&](auto&& row_work, bool report) {
+        std::atomic<int> next_row{0};
+        std::atomic<long long> done{0};
+        std::vector<std::thread> workers;
+        for (int i = 0; i < thread_count; ++i) {
+            workers.emplace_back([&] {
+                for (int y = next_row++; y < h; y = next_row++) {
+                    row_work(y);
+                    done += w;
+                }
+            });
+        }
+        if (report && settings.progress) {
+            while (done.load() < (long long)pixels) {
+                settings.progress(done.load(), (long long)pixels);
+                std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            }
+            settings.progress((long long)pixels, (long long)pixels);
+        }
+        for (auto& worker : workers) worker.join();
+    };
+
+    // Camera rays: layer 0 is the nearest front face past the near plane;
+    // layer 1 the nearest front face at least dz behind it (the peel).
+    // With a camera-space direction of unit depth, t is linear depth.
+    parallel_rows(
+        [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                const glm::vec2 ndc =
+                    (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f -
+                    1.0f;
+                const glm::vec3 direction_camera(ndc * ray_scale, -1.0f);
+                const glm::vec3 direction =
+                    glm::vec3(camera_to_world * glm::vec4(direction_camera, 0.0f));
+                const RayScene::Hit first =
+                    scene.intersect_front(eye, direction, camera.near_plane, 1e30f);
+                if (!first.hit) continue;
+                out.depth_layer0.pixels[i] = first.distance;
+                positions[i] = eye + direction * first.distance;
+                normals[i] = first.normal;
+                const RayScene::Hit second = scene.intersect_front(
+                    eye, direction, first.distance + render.min_separation, 1e30f);
+                if (second.hit) out.depth_layer1.pixels[i] = second.distance;
+            }
+        },
+        false);
+
+    // An occluder counts as seen by a layer when that layer's depth, at the
+    // pixel it projects to or one of the eight around it, agrees within 2%
+    // of its depth or three pixel footprints, whichever is larger.
+    const LayerClassifier classify = [&](glm::vec3 world) -> int {
+        const glm::vec3 c = glm::vec3(view * glm::vec4(world, 1.0f));
+        const float depth = -c.z;
+        if (depth < camera.near_plane) return -1;
+        const glm::vec2 ndc = glm::vec2(c.x, c.y) / (depth * ray_scale);
+        const int px = int(std::floor((ndc.x * 0.5f + 0.5f) * float(w)));
+        const int py = int(std::floor((ndc.y * 0.5f + 0.5f) * float(h)));
+        if (px < 0 || py < 0 || px >= w || py >= h) return -1;
+        const float footprint = 2.0f * ray_scale.y * depth / float(h);
+        const float tolerance = std::max(0.02f * depth, 3.0f * footprint);
+        for (int layer = 0; layer < 2; ++layer) {
+            const FloatImage& d = layer == 0 ? out.depth_layer0 : out.depth_layer1;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int qx = px + dx, qy = py + dy;
+                    if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                    const float z = d.at(qx, qy);
+                    if (z > 0.0f && std::abs(z - depth) <= tolerance) return layer;
+                }
+        }
+        return -1;
+    };
+
+    parallel_rows(
+        [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                if (out.depth_layer0.pixels[i] <= 0.0f) continue;
+                const AoSample s =
+                    ambient_visibility_at(scene, positions[i], normals[i], render.ao.radius,
+                                          settings.rays, stream_seed(settings.seed, i), classify);
+                out.ambient_visibility.pixels[i] = float(s.visibility);
+                out.hit_visibility.pixels[i] = float(s.hit_visibility);
+                out.standard_error.pixels[i] = float(s.standard_error);
+                out.rays.pixels[i] = float(s.rays);
+                out.occlusion_split.pixels[3 * i + 0] = float(s.occlusion_layer0);
+                out.occlusion_split.pixels[3 * i + 1] = float(s.occlusion_layer1);
+                out.occlusion_split.pixels[3 * i + 2] = float(s.occlusion_neither);
+            }
+        },
+        true);
+    return out;
+}
+
+}  // namespace deepgi

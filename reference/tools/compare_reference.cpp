@@ -1,0 +1,80 @@
+// deepgi_compare_reference DUMP_DIR REFERENCE_DIR GUARD_PIXELS
+// Compares `deepgi --headless --dump` against `deepgi reference` on the same
+// scene, size and guard band: first the reconstruction (layer-0 depth of the
+// camera rays against the rasterised depth), then the deep SAO visibility
+// before and after the blur against the ray-traced AV, over the viewport
+// (guard band excluded) where both see a surface.
+#include "deepgi/image_io.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv) {
+    if (argc != 4) {
+        fmt::print(stderr, "usage: deepgi_compare_reference DUMP_DIR REFERENCE_DIR GUARD_PIXELS\n");
+        return 2;
+    }
+    try {
+        const std::filesystem::path dump = argv[1], reference = argv[2];
+        const int guard = std::stoi(argv[3]);
+        const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
+        const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
+        if (raster.width != traced.width || raster.height != traced.height) {
+            fmt::print(stderr, "size mismatch: dump {}x{}, reference {}x{}\n", raster.width,
+                       raster.height, traced.width, traced.height);
+            return 2;
+        }
+        std::vector<double> relative;
+        long long coverage_mismatch = 0;
+        for (std::size_t i = 0; i < raster.pixels.size(); ++i) {
+            const float a = raster.pixels[i], b = traced.pixels[i];
+            if ((a > 0.0f) != (b > 0.0f)) ++coverage_mismatch;
+            if (a > 0.0f && b > 0.0f) relative.push_back(std::abs(double(a) - b) / b);
+        }
+        std::sort(relative.begin(), relative.end());
+        auto quantile = [&](double q) {
+            return relative.empty() ? 0.0 : relative[std::size_t(q * double(relative.size() - 1))];
+        };
+        fmt::print(
+            "depth: {} pixels, relative error median {:.3g}, 99% {:.3g}, max {:.3g}; "
+            "{} pixels hit in one but not the other\n",
+            relative.size(), quantile(0.5), quantile(0.99), quantile(1.0), coverage_mismatch);
+
+        const auto truth = deepgi::read_pfm(reference / "reference-ao-visibility.pfm");
+        for (const char* name : {"ao-raw", "ao-blurred"}) {
+            const auto estimate = deepgi::read_pfm(dump / (std::string(name) + ".pfm"));
+            double sum_abs = 0.0, sum = 0.0;
+            long long count = 0, open = 0, open_dark = 0;
+            for (int y = guard; y < truth.height - guard; ++y) {
+                for (int x = guard; x < truth.width - guard; ++x) {
+                    // Only where both agree on the surface: silhouette pixels
+                    // would compare different points.
+                    const float a = raster.at(x, y), b = traced.at(x, y);
+                    if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
+                    const double error = double(estimate.at(x, y)) - truth.at(x, y);
+                    sum_abs += std::abs(error);
+                    sum += error;
+                    ++count;
+                    // Open surface: nothing within r in the truth.
+                    if (truth.at(x, y) >= 0.9999f) {
+                        ++open;
+                        if (estimate.at(x, y) < 0.99f) ++open_dark;
+                    }
+                }
+            }
+            fmt::print(
+                "{}: {} pixels, MAE {:.4f}, bias {:+.4f}, open pixels below 0.99: {} of {}\n", name,
+                count, count ? sum_abs / count : 0.0, count ? sum / count : 0.0, open_dark, open);
+        }
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "deepgi_compare_reference: {}\n", error.what());
+        return 2;
+    }
+    return 0;
+}

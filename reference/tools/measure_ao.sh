@@ -1,0 +1,21 @@
+#!/bin/sh
+# Deep SAO against the ray-traced reference on the reference and built-in
+# scenes, one and two layers: MAE and bias before and after the blur.
+# usage: measure_ao.sh BUILD_DIR WORK_DIR [SIZE] [extra deepgi flags...]
+set -eu
+build=$1; work=$2; size=${3:-320x180}
+shift 2; [ $# -gt 0 ] && shift
+height=${size#*x}
+guard=$(( (height + 5) / 10 ))  # lround(0.1 * height), the default guard band
+mkdir -p "$work"
+for scene in ref-crease ref-slab ref-board ref-bench cornell atrium warehouse; do
+  if [ ! -f "$work/$scene-ref/reference-ao-visibility.pfm" ]; then
+    "$build/apps/deepgi/deepgi" reference --scene $scene --size $size --output "$work/$scene-ref" >/dev/null
+  fi
+  for layers in 1 2; do
+    "$build/apps/deepgi/deepgi" --headless --scene $scene --size $size --ao-layers $layers "$@" \
+      --output "$work/$scene-$layers.png" --dump "$work/$scene-$layers"
+    echo "== $scene, $layers layer(s)"
+    "$build/reference/deepgi_compare_reference" "$work/$scene-$layers" "$work/$scene-ref" $guard | tail -2
+  done
+done
