@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -37,7 +38,8 @@ struct Options {
     std::string timing = "auto";
     bool camera_path = false;
     bool print_timings = false;
-    deepgi::AoSettings ao;  // deep SAO flags (--ao-*)
+    deepgi::AoSettings ao;                  // deep SAO flags (--ao-*)
+    std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
 };
 
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
@@ -110,7 +112,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
         throw deepgi::InputError(
             "--hidden-window writes only the PNG (no --dump or --print-timings)");
     }
-    const deepgi::Scene scene = deepgi::load_scene(options.scene);
+    deepgi::SceneLimits limits;
+    for (const auto& assignment : options.scene_limits) deepgi::set_scene_limit(limits, assignment);
+    const deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
                                      options.output);
@@ -147,6 +151,9 @@ int main(int argc, char** argv) {
                  "With --headless: render in a hidden GLFW window instead of EGL (needs an X "
                  "server, e.g. xvfb-run)");
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
+    app.add_option("--scene-limit", options.scene_limits,
+                   "Raise a scene file limit (headless), NAME=VALUE: json-depth, node-visits, "
+                   "triangles, texture-side, texture-bytes (docs/hardening.md)");
     app.add_option("--size", options.size, "Image size WIDTHxHEIGHT");
     app.add_option("--frames", options.frames, "Frames to render before writing the output");
     app.add_option("--output", options.output, "PNG file to write (headless)");
