@@ -4,9 +4,11 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
+#include "deepgi/image_io.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -108,6 +110,10 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     if (options.output.empty()) throw deepgi::InputError("--headless needs --output FILE.png");
     if (options.frames < 1) throw deepgi::InputError("--frames must be at least 1");
     check_output_path(options.output);
+    // Both outputs are checked before any work, so a bad --dump cannot fail
+    // after the PNG was written (docs/hardening.md: output paths).
+    spiral::fileio::check_file_target(options.output);
+    if (!options.dump.empty()) spiral::fileio::check_directory_target(options.dump, ".pfm");
     if (options.hidden_window && (!options.dump.empty() || options.print_timings)) {
         throw deepgi::InputError(
             "--hidden-window writes only the PNG (no --dump or --print-timings)");
@@ -126,9 +132,14 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
         renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
                                             : scene.default_camera);
     }
-    deepgi::write_png(options.output, settings.width, settings.height,
-                      renderer.read_output_rgba8());
+    // The PNG is committed only after the dump is complete: a failed dump
+    // leaves neither.
+    const auto png =
+        deepgi::encode_png(settings.width, settings.height, renderer.read_output_rgba8());
+    spiral::fileio::AtomicFile output(options.output);
+    output.write(png.data(), png.size());
     if (!options.dump.empty()) renderer.dump_pass_outputs(options.dump);
+    output.commit();
     if (options.print_timings) {
         const auto info = deepgi::query_context_info();
         fmt::print(
@@ -209,6 +220,9 @@ int main(int argc, char** argv) {
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
         return deepgi::run_interactive(options.scene, settings);
     } catch (const deepgi::InputError& error) {
+        fmt::print(stderr, "deepgi: error: {}\n", error.what());
+        return exit_bad_input;
+    } catch (const spiral::fileio::WriteError& error) {  // output path or full disk
         fmt::print(stderr, "deepgi: error: {}\n", error.what());
         return exit_bad_input;
     } catch (const std::exception& error) {

@@ -9,6 +9,7 @@
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 
 #include <algorithm>
 #include <array>
@@ -482,13 +483,14 @@ FloatImage Renderer::read_pass_output(const std::string& name) const {
 }
 
 void Renderer::dump_pass_outputs(const fs::path& directory) const {
-    std::error_code error;
-    fs::create_directories(directory, error);
-    if (error || !fs::is_directory(directory)) {
-        throw InputError(fmt::format("cannot create dump directory '{}'", directory.string()));
+    // The whole set appears at once or not at all (a previous dump, holding
+    // only .pfm files, is replaced whole); a failure names the file and errno.
+    spiral::fileio::AtomicDirectory dump(directory, ".pfm");
+    for (const auto& name : pass_output_names()) {
+        const std::vector<std::uint8_t> bytes = encode_pfm(read_pass_output(name));
+        dump.write_file(name + ".pfm", bytes.data(), bytes.size());
     }
-    for (const auto& name : pass_output_names())
-        write_pfm(directory / (name + ".pfm"), read_pass_output(name));
+    dump.commit();
 }
 
 }  // namespace deepgi
