@@ -2,6 +2,7 @@
 // the interactive window or renders headless through EGL.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/frame_limits.hpp"
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/image_io.hpp"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -42,6 +44,7 @@ struct Options {
     bool print_timings = false;
     deepgi::AoSettings ao;                  // deep SAO flags (--ao-*)
     std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
+    std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
 };
 
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
@@ -166,6 +169,10 @@ int main(int argc, char** argv) {
                    "Raise a scene file limit (headless), NAME=VALUE: json-depth, node-visits, "
                    "triangles, texture-side, texture-bytes (docs/hardening.md)");
     app.add_option("--size", options.size, "Image size WIDTHxHEIGHT");
+    app.add_option("--max-gpu-memory", options.max_gpu_mib,
+                   "Refuse a --size/--guard-band whose render targets need more MiB than this")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_option("--frames", options.frames, "Frames to render before writing the output");
     app.add_option("--output", options.output, "PNG file to write (headless)");
     app.add_option("--generator", options.generator,
@@ -216,6 +223,7 @@ int main(int argc, char** argv) {
 
     try {
         const deepgi::RenderSettings settings = settings_from(options);
+        deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) return run_headless(options, settings);
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
         return deepgi::run_interactive(options.scene, settings);

@@ -12,3 +12,12 @@ target_link_libraries(deepgi_output_tests PRIVATE deepgi::runtime spiral::fileio
 target_compile_definitions(deepgi_output_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_output_tests deepgi)
 catch_discover_tests(deepgi_output_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# ---- Frame size and memory limits ----
+add_executable(deepgi_frame_limits_tests ${CMAKE_CURRENT_LIST_DIR}/frame_limits_test.cpp)
+target_link_libraries(deepgi_frame_limits_tests PRIVATE deepgi::runtime spiral_catch_main
+                                                        fmt::fmt)
+target_compile_definitions(deepgi_frame_limits_tests
+                           PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
+add_dependencies(deepgi_frame_limits_tests deepgi)
+catch_discover_tests(deepgi_frame_limits_tests PROPERTIES LABELS runtime TIMEOUT 120)
