@@ -99,6 +99,20 @@ TEST_CASE("gltf loader: offsets and counts that wrap 64 bits are refused naming 
     REQUIRE(contains(refusal(json), "byteStride 4 is smaller than one element"));
 }
 
+TEST_CASE("gltf loader: 32-bit indices are read as integers, not through float",
+          "[runtime][gltf]") {
+    // Found by the fuzzer: index 0xffffffff became the float 2^32, whose
+    // conversion back to uint32 is undefined (0 on x86: a silent, wrong
+    // triangle). Read exactly, it is past the vertices and refused.
+    std::string json = triangle_gltf({});
+    std::vector<std::uint8_t> buffer;
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) append(buffer, v);
+    for (std::uint32_t i : {0u, 1u, 0xffffffffu}) append(buffer, i);
+    const std::size_t start = json.find("base64,") + 7;
+    json.replace(start, json.find('"', start) - start, base64(buffer));
+    REQUIRE(refusal(json).find("refers past the end of the vertices") != std::string::npos);
+}
+
 TEST_CASE("gltf loader: JSON nested 20,000 deep is refused before parsing", "[runtime][gltf]") {
     // Through a file too, since the file path reads the text itself.
     const fs::path dir = fs::temp_directory_path() / fmt::format("gltf-deep-{}", ::getpid());

@@ -68,9 +68,11 @@ public:
 
     // Returns component `c` of element `i` as float, honouring byteStride and
     // normalised integer types; every offset is bounds checked.
-    std::function<float(std::size_t, int)> accessor_reader(int accessor_index,
-                                                           int expected_components,
-                                                           std::size_t& count) const {
+    // `raw`, when given, receives the first element's address and the stride
+    // (for integer reads that must not pass through float).
+    std::function<float(std::size_t, int)> accessor_reader(
+        int accessor_index, int expected_components, std::size_t& count,
+        std::pair<const std::uint8_t*, std::size_t>* raw = nullptr) const {
         if (accessor_index < 0 || accessor_index >= int(model_.accessors.size()))
             fail("accessor index out of range");
         const auto& accessor = model_.accessors[std::size_t(accessor_index)];
@@ -120,6 +122,7 @@ public:
                                 subject, count, begin, end, view_end));
         }
         const std::uint8_t* data = buffer.data.data() + begin;
+        if (raw) *raw = {data, stride};
         const int type = accessor.componentType;
         const bool normalized = accessor.normalized;
         return [=](std::size_t i, int c) -> float {
@@ -166,9 +169,24 @@ public:
             fail("indices must be unsigned integers");
         }
         std::size_t count = 0;
-        auto read = accessor_reader(accessor_index, 1, count);
+        std::pair<const std::uint8_t*, std::size_t> raw;
+        accessor_reader(accessor_index, 1, count, &raw);
+        // Read as integers: through float, 32-bit indices above 2^24 lose
+        // bits and 0xffffffff rounds to 2^32, which no uint32 holds.
+        const auto [data, stride] = raw;
         std::vector<std::uint32_t> indices(count);
-        for (std::size_t i = 0; i < count; ++i) indices[i] = static_cast<std::uint32_t>(read(i, 0));
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::uint8_t* p = data + i * stride;
+            if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+                indices[i] = *p;
+            } else if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                std::uint16_t v;
+                std::memcpy(&v, p, 2);
+                indices[i] = v;
+            } else {
+                std::memcpy(&indices[i], p, 4);
+            }
+        }
         return indices;
     }
 
