@@ -2,19 +2,24 @@
 // the interactive window or renders headless through EGL.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/frame_limits.hpp"
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
+#include "deepgi/image_io.hpp"
 #include "reference_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -41,6 +46,8 @@ struct Options {
     bool gl_debug = false;
     deepgi::AoSettings ao;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
+    std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
+    std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
 };
 
 // Only the format; the range is checked with every other setting by
@@ -87,11 +94,17 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     if (options.output.empty()) throw deepgi::InputError("--headless needs --output FILE.png");
     if (options.frames < 1) throw deepgi::InputError("--frames must be at least 1");
     check_output_path(options.output);
+    // Both outputs are checked before any work, so a bad --dump cannot fail
+    // after the PNG was written (docs/hardening.md: output paths).
+    spiral::fileio::check_file_target(options.output);
+    if (!options.dump.empty()) spiral::fileio::check_directory_target(options.dump, ".pfm");
     if (options.hidden_window && (!options.dump.empty() || options.print_timings)) {
         throw deepgi::InputError(
             "--hidden-window writes only the PNG (no --dump or --print-timings)");
     }
-    const deepgi::Scene scene = deepgi::load_scene(options.scene);
+    deepgi::SceneLimits limits;
+    for (const auto& assignment : options.scene_limits) deepgi::set_scene_limit(limits, assignment);
+    const deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
                                      options.output);
@@ -103,9 +116,14 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
         renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
                                             : scene.default_camera);
     }
-    deepgi::write_png(options.output, settings.width, settings.height,
-                      renderer.read_output_rgba8());
+    // The PNG is committed only after the dump is complete: a failed dump
+    // leaves neither.
+    const auto png =
+        deepgi::encode_png(settings.width, settings.height, renderer.read_output_rgba8());
+    spiral::fileio::AtomicFile output(options.output);
+    output.write(png.data(), png.size());
     if (!options.dump.empty()) renderer.dump_pass_outputs(options.dump);
+    output.commit();
     if (options.print_timings) {
         const auto info = deepgi::query_context_info();
         fmt::print(
@@ -131,9 +149,16 @@ int main(int argc, char** argv) {
                  "With --headless: render in a hidden GLFW window instead of EGL (needs an X "
                  "server, e.g. xvfb-run)");
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
+    app.add_option("--scene-limit", options.scene_limits,
+                   "Raise a scene file limit (headless), NAME=VALUE: json-depth, node-visits, "
+                   "triangles, texture-side, texture-bytes (docs/hardening.md)");
     app.add_option(
         "--size", options.size,
         fmt::format("Image size WIDTHxHEIGHT (1 to {} per side)", deepgi::limits::max_image_side));
+    app.add_option("--max-gpu-memory", options.max_gpu_mib,
+                   "Refuse a --size/--guard-band whose render targets need more MiB than this")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_option("--frames", options.frames, "Frames to render before writing the output");
     app.add_option("--output", options.output, "PNG file to write (headless)");
     app.add_option("--generator", options.generator,
@@ -195,10 +220,14 @@ int main(int argc, char** argv) {
 
     try {
         const deepgi::RenderSettings settings = settings_from(options);
+        deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) return run_headless(options, settings);
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
         return deepgi::run_interactive(options.scene, settings);
     } catch (const deepgi::InputError& error) {
+        fmt::print(stderr, "deepgi: error: {}\n", error.what());
+        return exit_bad_input;
+    } catch (const spiral::fileio::WriteError& error) {  // output path or full disk
         fmt::print(stderr, "deepgi: error: {}\n", error.what());
         return exit_bad_input;
     } catch (const std::exception& error) {

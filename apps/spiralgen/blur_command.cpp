@@ -1,5 +1,6 @@
 // spiralgen blur: the GLSL header holding the bilateral blur's Gaussian weights.
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,8 +27,12 @@ void run_blur(const BlurArgs& args) {
     if (args.radius < 0 || args.radius > kMaxBlurRadius)
         throw UsageError(
             fmt::format("--radius {} is outside [0, {}]", args.radius, kMaxBlurRadius));
-    if (args.sigma && !(std::isfinite(*args.sigma) && *args.sigma > 0))
-        throw UsageError(fmt::format("--sigma {} is not a finite number > 0", *args.sigma));
+    // BLUR_SIGMA is a GLSL float: outside the normal float range it would
+    // be written as inf.0 or 0.0, and the header would not compile (or mean 0).
+    if (args.sigma && !codegen::valid_blur_sigma(*args.sigma))
+        throw UsageError(fmt::format("--sigma {} is not between {} and {} (a normal float)",
+                                     *args.sigma, std::numeric_limits<float>::min(),
+                                     std::numeric_limits<float>::max()));
     const codegen::BlurKernel kernel = codegen::gaussian_kernel(args.radius, args.sigma);
     // Recorded canonically and without --out, like every generated file.
     std::string command = fmt::format("spiralgen blur --radius {}", args.radius);
@@ -50,8 +55,10 @@ void add_blur_command(CLI::App& app) {
         ->required();
     command->add_option("--sigma", args->sigma,
                         "Standard deviation in pixels (default: radius / 2)");
-    command->add_option("--out", args->out,
-                        "Write to this file (atomically) instead of standard output");
+    command
+        ->add_option("--out", args->out,
+                     "Write to this file (atomically) instead of standard output ('-')")
+        ->check(non_empty_path);
     command->callback([args] { run_blur(*args); });
 }
 

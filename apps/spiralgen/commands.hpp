@@ -14,6 +14,12 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// For --out: an empty path is an error (it used to mean standard output
+// silently); '-' is standard output.
+inline const CLI::Validator non_empty_path(
+    [](std::string& path) { return path.empty() ? std::string("must not be empty") : ""; },
+    "PATH|-");
+
 void add_table_command(CLI::App& app);
 void add_discrepancy_command(CLI::App& app);
 void add_header_command(CLI::App& app);

@@ -13,6 +13,8 @@
 namespace spiralgen {
 namespace {
 
+constexpr int kMaxHeaderTaps = 4096;
+
 struct HeaderArgs {
     std::string pass;
     int taps = 0;
@@ -30,6 +32,13 @@ void run_header(const HeaderArgs& args) {
     if (args.taps < 1 || args.taps > spiral::kMaxTaps)
         throw UsageError(fmt::format("--taps {} is outside [1, {}]", args.taps, spiral::kMaxTaps));
     if (args.tau && *args.tau < 1) throw UsageError(fmt::format("--tau {} is below 1", *args.tau));
+    // The exact tau search grows faster than n^2 (4096 taps: seconds; 16384:
+    // most of a minute; 65535: hours), so a header stops where it is quick.
+    if (args.taps > kMaxHeaderTaps)
+        throw UsageError(fmt::format(
+            "--taps {} is above header's limit of {} taps (the exact search that every header "
+            "records grows faster than n^2)",
+            args.taps, kMaxHeaderTaps));
 
     // Recorded canonically and without --out: the bytes depend only on the
     // pass, the tap count and tau, not on where they are written.
@@ -53,12 +62,14 @@ void add_header_command(CLI::App& app) {
         "header", "Write the GLSL header of a gathering pass: tap count, turns, offsets, alphas");
     command->add_option("--pass", args->pass, "Pass name (free text; becomes the macro prefix)")
         ->required();
-    command->add_option("--taps", args->taps, "Number of taps, 1 to 65535")->required();
+    command->add_option("--taps", args->taps, "Number of taps, 1 to 4096")->required();
     command->add_option("--tau", args->tau,
                         "Number of spiral turns, overriding the optimum (the header then says "
                         "how much worse it is)");
-    command->add_option("--out", args->out,
-                        "Write to this file (atomically) instead of standard output");
+    command
+        ->add_option("--out", args->out,
+                     "Write to this file (atomically) instead of standard output ('-')")
+        ->check(non_empty_path);
     command->callback([args] { run_header(*args); });
 }
 

@@ -74,8 +74,10 @@ void add_table_command(CLI::App& app) {
     command->add_option("--max-n", args->max_n, "Largest tap count")->capture_default_str();
     command->add_option("--format", args->format, "Output format: cpp, glsl, json, csv or md")
         ->capture_default_str();
-    command->add_option("--out", args->out,
-                        "Write to this file (atomically) instead of standard output");
+    command
+        ->add_option("--out", args->out,
+                     "Write to this file (atomically) instead of standard output ('-')")
+        ->check(non_empty_path);
     command->add_option("--jobs", args->jobs,
                         "Worker threads; 0 (the default) uses all hardware threads");
     command->callback([args] { run_table(*args); });

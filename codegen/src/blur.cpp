@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace spiral::codegen {
@@ -12,14 +13,20 @@ double default_blur_sigma(int radius) {
     return radius > 0 ? radius / 2.0 : 0.5;
 }
 
+bool valid_blur_sigma(double sigma) {
+    // Rounded to float, it must stay finite and normal (not 0, not denormal).
+    if (!(sigma > 0) || !(sigma <= double(std::numeric_limits<float>::max()))) return false;
+    return std::isnormal(static_cast<float>(sigma));
+}
+
 BlurKernel gaussian_kernel(int radius, std::optional<double> sigma) {
     constexpr int max_radius = 1024;
     if (radius < 0 || radius > max_radius)
         throw std::invalid_argument(
             fmt::format("blur radius must be in [0, {}], got {}", max_radius, radius));
-    if (sigma && !(std::isfinite(*sigma) && *sigma > 0))
+    if (sigma && !valid_blur_sigma(*sigma))
         throw std::invalid_argument(
-            fmt::format("blur sigma must be a finite number > 0, got {}", *sigma));
+            fmt::format("blur sigma must be a normal float > 0, got {}", *sigma));
     BlurKernel kernel;
     kernel.radius = radius;
     kernel.sigma = sigma.value_or(default_blur_sigma(radius));

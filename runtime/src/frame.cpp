@@ -13,6 +13,7 @@
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 
 #include <algorithm>
 #include <array>
@@ -308,14 +309,16 @@ FloatImage Renderer::read_pass_output(const std::string& name) const {
 }
 
 void Renderer::dump_pass_outputs(const fs::path& directory) const {
-    std::error_code error;
-    fs::create_directories(directory, error);
-    if (error || !fs::is_directory(directory)) {
-        throw InputError(fmt::format("cannot create dump directory '{}'", directory.string()));
-    }
+    // The whole set appears at once or not at all (a previous dump, holding
+    // only .pfm files, is replaced whole); a failure names the file and errno.
+    spiral::fileio::AtomicDirectory dump(directory, ".pfm");
     const float near_plane = state_->last_camera ? state_->last_camera->near_plane : 0.05f;
-    for (const auto& output : all_outputs(*state_))
-        write_pfm(directory / (output.name + ".pfm"), deepgi::read_pass_output(output, near_plane));
+    for (const auto& output : all_outputs(*state_)) {
+        const std::vector<std::uint8_t> bytes =
+            encode_pfm(deepgi::read_pass_output(output, near_plane));
+        dump.write_file(output.name + ".pfm", bytes.data(), bytes.size());
+    }
+    dump.commit();
 }
 
 }  // namespace deepgi

@@ -127,6 +127,10 @@ struct BlurKernel {
     double sigma = 0;
     std::vector<float> weights;
 };
+// Whether `sigma` can be the header's BLUR_SIGMA: positive and, rounded to
+// float, finite and normal (so the literal is neither inf.0 nor 0.0).
+bool valid_blur_sigma(double sigma);
+
 BlurKernel gaussian_kernel(int radius, std::optional<double> sigma = std::nullopt);
 
 // The GLSL header text:

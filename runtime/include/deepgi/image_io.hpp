@@ -1,6 +1,7 @@
 #pragma once
-// Output files are written to a temporary name and renamed, so a failed run
-// never leaves a half-written image behind.
+// Output files go through the shared atomic writer (fileio/): a failed run
+// never leaves a half-written image behind, and special paths ("-", devices,
+// symlinks) follow the rules in docs/hardening.md.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -18,6 +19,12 @@ struct FloatImage {
         return pixels[(std::size_t(y) * width + x) * channels + c];
     }
 };
+
+// The files' bytes in memory, so a caller can check every write of them.
+// rgba8 rows bottom to top (GL order); encoded top to bottom as PNG expects.
+std::vector<std::uint8_t> encode_png(int width, int height,
+                                     const std::vector<std::uint8_t>& rgba8_bottom_up);
+std::vector<std::uint8_t> encode_pfm(const FloatImage& image);
 
 // rgba8 rows bottom to top (GL order); written top to bottom as PNG expects.
 void write_png(const std::filesystem::path& path, int width, int height,

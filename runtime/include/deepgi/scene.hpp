@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -95,12 +96,35 @@ Scene make_builtin_scene(std::string_view name);
 std::vector<std::string> reference_scene_names();
 Scene make_reference_scene(std::string_view name);
 
-// glTF 2.0 (.gltf or .glb). Throws InputError for a missing, malformed or
-// unsupported file.
-Scene load_gltf_scene(const std::filesystem::path& path);
+// What one scene file may cost. A scene file is untrusted input: a few
+// kilobytes can describe a JSON nesting that overflows the parser's stack, a
+// node graph that instantiates one mesh 2^40 times, or a PNG that decodes to
+// gigabytes. Each limit fails with a message naming it; raise it with
+// set_scene_limit (deepgi: --scene-limit NAME=VALUE). docs/hardening.md.
+struct SceneLimits {
+    std::uint64_t json_depth = 128;          // nesting of JSON arrays and objects
+    std::uint64_t node_visits = 1'000'000;   // nodes visited, counted once per path
+    std::uint64_t triangles = 10'000'000;    // triangles after instancing
+    std::uint64_t texture_side = 8192;       // pixels per side of one image
+    std::uint64_t texture_bytes = 1u << 30;  // decoded bytes of all images together
+};
+
+// Sets one limit from "NAME=VALUE" (json-depth, node-visits, triangles,
+// texture-side, texture-bytes); throws InputError for anything else.
+void set_scene_limit(SceneLimits& limits, std::string_view assignment);
+
+// glTF 2.0 (.gltf or .glb). Throws InputError for a missing, malformed,
+// unsupported or over-limit file.
+Scene load_gltf_scene(const std::filesystem::path& path, const SceneLimits& limits = {});
+
+// The same from bytes in memory, with no file access at all: buffers and
+// images must be embedded (data: URIs or the GLB binary chunk). `name` is used
+// in messages. This is the loader's whole CPU side, as the fuzzer drives it.
+Scene load_gltf_scene_from_memory(std::span<const std::uint8_t> bytes, bool binary,
+                                  std::string_view name, const SceneLimits& limits = {});
 
 // A built-in name, or a path ending in .gltf/.glb.
-Scene load_scene(std::string_view name_or_path);
+Scene load_scene(std::string_view name_or_path, const SceneLimits& limits = {});
 
 glm::vec3 camera_forward(const Camera& camera);
 glm::mat4 camera_view_matrix(const Camera& camera);

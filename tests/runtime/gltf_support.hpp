@@ -1,0 +1,122 @@
+#pragma once
+// Crafted glTF files for the loader's tests, its fuzzer's seed corpus and its
+// benchmark: each built from plain numbers, so the expected scene (or the
+// expected refusal) follows from the construction, not from the loader.
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace deepgi::testing {
+
+inline std::string base64(const std::vector<std::uint8_t>& bytes) {
+    static const char alphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string text;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::uint32_t a = bytes[i];
+        const std::uint32_t b = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+        const std::uint32_t c = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+        const std::uint32_t word = a << 16 | b << 8 | c;
+        text += alphabet[word >> 18 & 63];
+        text += alphabet[word >> 12 & 63];
+        text += i + 1 < bytes.size() ? alphabet[word >> 6 & 63] : '=';
+        text += i + 2 < bytes.size() ? alphabet[word & 63] : '=';
+    }
+    return text;
+}
+
+template <typename T>
+void append(std::vector<std::uint8_t>& bytes, T value) {
+    std::uint8_t raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    bytes.insert(bytes.end(), raw, raw + sizeof(T));
+}
+
+// One triangle (0,0,0) (1,0,0) (0,1,0): 36 bytes of float positions, then
+// three 32-bit indices at byte 36. Accessor 0 is POSITION, accessor 1 the
+// indices; `position_extra` / `index_extra` replace their count and add
+// fields (", \"byteOffset\": 8"). `nodes` is the JSON array of nodes, whose
+// node 0 is the scene's root.
+struct TriangleFile {
+    std::string position_fields = R"("count":3)";
+    std::string index_fields = R"("count":3)";
+    std::string nodes = R"([{"mesh":0}])";
+    bool with_indices = true;
+    std::string primitive_extra;  // more primitive members, each starting with ','
+    std::string extra;            // more top-level members, each starting with ','
+};
+
+inline std::string triangle_gltf(const TriangleFile& file) {
+    std::vector<std::uint8_t> buffer;
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) append(buffer, v);
+    for (std::uint32_t i : {0u, 1u, 2u}) append(buffer, i);
+    const std::string indices = (file.with_indices ? R"(,"indices":1)" : "") + file.primitive_extra;
+    return fmt::format(
+        R"({{"asset":{{"version":"2.0"}},)"
+        R"("buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],)"
+        R"("bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":12}}],)"
+        R"("accessors":[{{"bufferView":0,"componentType":5126,"type":"VEC3",{}}},)"
+        R"({{"bufferView":1,"componentType":5125,"type":"SCALAR",{}}}],)"
+        R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}{}}}]}}],)"
+        R"("nodes":{},"scenes":[{{"nodes":[0]}}],"scene":0{}}})",
+        buffer.size(), base64(buffer), file.position_fields, file.index_fields, indices, file.nodes,
+        file.extra);
+}
+
+// Nodes 0..levels-1 each list the next node twice; node `levels` holds the
+// mesh. The mesh is instantiated 2^levels times in 2^(levels+1) - 1 visits.
+inline std::string dag_nodes(int levels) {
+    std::string nodes = "[";
+    for (int i = 0; i < levels; ++i) nodes += fmt::format(R"({{"children":[{0},{0}]}},)", i + 1);
+    return nodes + R"({"mesh":0}])";
+}
+
+// JSON whose asset.extras nests `depth` arrays.
+inline std::string deep_json(int depth) {
+    return R"({"asset":{"version":"2.0","extras":)" + std::string(std::size_t(depth), '[') +
+           std::string(std::size_t(depth), ']') + "}}";
+}
+
+// The start of a PNG file: signature and an IHDR chunk for an 8-bit RGBA
+// image of the given size, with a correct CRC. Enough for any decoder to
+// learn the size; the pixel data is absent.
+inline std::vector<std::uint8_t> png_header(std::uint32_t width, std::uint32_t height) {
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    auto be32 = [](std::vector<std::uint8_t>& out, std::uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8) out.push_back(std::uint8_t(v >> shift));
+    };
+    std::vector<std::uint8_t> chunk = {'I', 'H', 'D', 'R'};
+    be32(chunk, width);
+    be32(chunk, height);
+    for (std::uint8_t v : {8, 6, 0, 0, 0}) chunk.push_back(v);
+    std::uint32_t crc = 0xffffffffu;
+    for (std::uint8_t byte : chunk) {
+        crc ^= byte;
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    be32(png, 13);
+    png.insert(png.end(), chunk.begin(), chunk.end());
+    be32(png, crc ^ 0xffffffffu);
+    return png;
+}
+
+// `TriangleFile::extra` members adding textures: one image per entry of
+// `pngs`, each as a data URI, with material 0 using image 0.
+inline std::string image_members(const std::vector<std::vector<std::uint8_t>>& pngs) {
+    std::string images;
+    std::string textures;
+    for (std::size_t i = 0; i < pngs.size(); ++i) {
+        images +=
+            fmt::format(R"({}{{"uri":"data:image/png;base64,{}"}})", i ? "," : "", base64(pngs[i]));
+        textures += fmt::format(R"({}{{"source":{}}})", i ? "," : "", i);
+    }
+    return fmt::format(
+        R"(,"images":[{}],"textures":[{}],)"
+        R"("materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}])",
+        images, textures);
+}
+
+}  // namespace deepgi::testing

@@ -1,0 +1,23 @@
+# ---- Hostile scene files: the glTF loader on the CPU, no GL needed ----
+pkg_check_modules(DEEPGI_TEST_STB REQUIRED IMPORTED_TARGET stb)
+add_executable(deepgi_scene_tests ${CMAKE_CURRENT_LIST_DIR}/scene_gltf_test.cpp)
+target_link_libraries(deepgi_scene_tests PRIVATE deepgi::scene spiral_catch_main fmt::fmt
+                                                 PkgConfig::DEEPGI_TEST_STB)
+catch_discover_tests(deepgi_scene_tests PROPERTIES LABELS runtime TIMEOUT 120)
+
+# ---- Output files: full disk, symlinks, special files, signals, --dump ----
+add_executable(deepgi_output_tests ${CMAKE_CURRENT_LIST_DIR}/output_paths_test.cpp)
+target_link_libraries(deepgi_output_tests PRIVATE deepgi::runtime spiral::fileio
+                                                  spiral_catch_main fmt::fmt)
+target_compile_definitions(deepgi_output_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
+add_dependencies(deepgi_output_tests deepgi)
+catch_discover_tests(deepgi_output_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# ---- Frame size and memory limits ----
+add_executable(deepgi_frame_limits_tests ${CMAKE_CURRENT_LIST_DIR}/frame_limits_test.cpp)
+target_link_libraries(deepgi_frame_limits_tests PRIVATE deepgi::runtime spiral_catch_main
+                                                        fmt::fmt)
+target_compile_definitions(deepgi_frame_limits_tests
+                           PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
+add_dependencies(deepgi_frame_limits_tests deepgi)
+catch_discover_tests(deepgi_frame_limits_tests PROPERTIES LABELS runtime TIMEOUT 120)
