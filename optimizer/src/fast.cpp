@@ -148,6 +148,47 @@ std::int64_t band_open_width(std::int64_t n, std::int64_t m) {
     return m <= n - 2 ? 2 * m + 2 : (m == n - 1 ? 2 * n - 1 : 2 * n);
 }
 
+// scan_band without the sector bookkeeping, for callers that need only the
+// value: the same recurrences as ArcScan, tracking the keys alone.
+std::int64_t band_excess(const std::vector<std::int64_t>& angles,
+                         const std::vector<std::int32_t>& taps_at, std::int64_t m,
+                         std::int64_t open_width, std::int64_t count_unit, std::int64_t circle) {
+    const std::int64_t closed_width = 2 * (m - 1);
+    // Per width: smallest start key, best closed arc, largest end key, best open arc.
+    std::int64_t c_min = kInf, c_closed = -kInf, c_max = -kInf, c_open = kInf;
+    std::int64_t o_min = kInf, o_closed = -kInf, o_max = -kInf, o_open = kInf;
+    std::int64_t before = 0;
+    const std::size_t size = angles.size();
+    for (std::size_t k = 0; k < size; ++k) {
+        const std::int64_t pos = angles[k];
+        const std::int64_t through = before + taps_at[k];
+        const std::int64_t before_key = count_unit * before, through_key = count_unit * through;
+        const std::int64_t c_pos = closed_width * pos, o_pos = open_width * pos;
+        c_min = std::min(c_min, before_key - c_pos);
+        o_min = std::min(o_min, before_key - o_pos);
+        c_closed = std::max(c_closed, through_key - c_pos - c_min);
+        o_closed = std::max(o_closed, through_key - o_pos - o_min);
+        // An open arc ends at a later angle than the one it starts after; c_max
+        // still holds only earlier angles here (kept as -kInf until then).
+        if (c_max > -kInf) {
+            c_open = std::min(c_open, before_key - c_pos - c_max);
+            o_open = std::min(o_open, before_key - o_pos - o_max);
+        }
+        c_max = std::max(c_max, through_key - c_pos);
+        o_max = std::max(o_max, through_key - o_pos);
+        before = through;
+    }
+    std::int64_t worst = c_closed;  // closed sectors, non-wrapping
+    // Open sectors, wrapping: the complement of the best closed non-wrapping arc.
+    worst = std::max(worst, open_width * circle - count_unit * m + o_closed);
+    if (c_max > -kInf && size > 1) {
+        // Closed wrapping: the complement of the best open non-wrapping arc.
+        worst = std::max(worst, count_unit * m - closed_width * circle - c_open);
+        worst = std::max(worst, -o_open);  // open sectors, non-wrapping
+    }
+    return worst;
+}
+
 }  // namespace
 
 std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int64_t taps,
@@ -184,10 +225,8 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int
             }
         }
     }
-    const auto bands =
-        scan_band(scratch.angles, scratch.taps_at, taps, band_open_width(lattice.n, taps),
-                  2 * lattice.circle, lattice.circle);
-    return std::max(bands[0].excess, bands[1].excess);
+    return band_excess(scratch.angles, scratch.taps_at, taps, band_open_width(lattice.n, taps),
+                       2 * lattice.circle, lattice.circle);
 }
 
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t bound,
@@ -218,6 +257,15 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
             taps_at.insert(taps_at.begin() + index, 1);
         }
 
+        if (!worst_sector) {
+            const std::int64_t excess =
+                band_excess(angles, taps_at, m, open_width(m), count_unit, circle);
+            if (excess > best) {
+                best = excess;
+                best_m = m;
+            }
+            continue;
+        }
         for (const BandWorst& band :
              scan_band(angles, taps_at, m, open_width(m), count_unit, circle)) {
             if (band.excess > best) {
@@ -258,6 +306,15 @@ Discrepancy discrepancy(int n, std::int64_t tau, std::int64_t m) {
     result.scaled =
         detail::evaluate(n, tau, m, std::numeric_limits<std::int64_t>::max(), &result.worst);
     return result;
+}
+
+}  // namespace spiral
+
+namespace spiral {
+
+std::int64_t discrepancy_scaled(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    return detail::evaluate(n, tau, m, std::numeric_limits<std::int64_t>::max(), nullptr);
 }
 
 }  // namespace spiral

@@ -93,64 +93,83 @@ SearchResult search(int n, const SearchOptions& options) {
     std::atomic<std::int64_t> best{kUnbounded};
     std::atomic<std::size_t> next{0};
 
-    run_workers(jobs, [&] {
-        // Bands that recently exceeded the bound, most recent first: the worst
-        // band of one poor candidate tends to be poor for the next, and wide
-        // bands (many taps, a large arc) are where candidates that pass the
-        // cluster bound usually fail. Each probe is one band from scratch,
-        // O(k log k), instead of the O(k^2) incremental sweep up to band k.
-        detail::BandScratch scratch;
-        std::vector<std::int64_t> probes;
-        // Initial order: the bands that most often exceed the optimum among
-        // candidates passing the cluster bound, measured at n = 512 and 1000,
-        // then the rest of a grid of 5% steps. The band of 80% of the taps was
-        // probed already; n and n / 2 taps are nearly uniform and left to the
-        // sweep.
-        for (const int percent : {65, 90, 70, 55, 40, 85, 60, 75, 95, 45, 35, 30, 25, 20, 15, 10})
-            if (const std::int64_t taps = percent * std::int64_t{n} / 100;
-                taps >= 1 && std::find(probes.begin(), probes.end(), taps) == probes.end())
-                probes.push_back(taps);
-        auto promote = [&](std::size_t index, std::int64_t taps) {
-            if (index == probes.size()) {
-                if (probes.size() < kProbeBands) probes.push_back(taps);
-                index = probes.size() - 1;
-                probes[index] = taps;
-            }
-            std::rotate(probes.begin(), probes.begin() + static_cast<std::ptrdiff_t>(index),
-                        probes.begin() + static_cast<std::ptrdiff_t>(index) + 1);
-        };
-        for (std::size_t k = next++; k < candidates.size(); k = next++) {
-            const std::int64_t bound = best.load(std::memory_order_relaxed);
-            // best only decreases, so a bound above it now is above the final
-            // minimum, and so is every later (larger) bound.
-            if (candidates[k].lower_bound > bound) {
-                next = candidates.size();
-                break;
-            }
-            // Any one band's excess is a lower bound on K (K is the maximum
-            // over all bands), so one probe above the bound rejects exactly.
-            bool rejected = false;
-            for (std::size_t b = 0; b < probes.size() && !rejected; ++b) {
-                if (detail::evaluate_band(n, candidates[k].p, m, probes[b], scratch) > bound) {
-                    rejected = true;
-                    promote(b, probes[b]);
+    // Aspiration: search below a ceiling first. Every candidate above the
+    // ceiling is rejected as cheaply as one whose bound is above the optimum,
+    // so the sweeps of a descending chain of incumbents are avoided. If some
+    // candidate has K <= ceiling, the pass is exact: its minimum is the
+    // minimum, and every candidate it dropped was strictly above a value
+    // attained. Otherwise the ceiling grows by a quarter and the pass repeats;
+    // K <= 4 n^2 m always, so a ceiling that large cannot fail. Whether a pass
+    // succeeds depends only on the candidates' K, never on timing.
+    const std::int64_t largest_k = 4 * std::int64_t{n} * n * m;
+    std::int64_t ceiling = candidates.front().lower_bound + candidates.front().lower_bound / 4;
+    for (;;) {
+        std::fill(excess.begin(), excess.end(), kUnbounded);
+        std::fill(exact.begin(), exact.end(), 0);
+        best = ceiling >= largest_k ? kUnbounded : ceiling;
+        next = 0;
+        run_workers(jobs, [&] {
+            // Bands that recently exceeded the bound, most recent first: the worst
+            // band of one poor candidate tends to be poor for the next, and wide
+            // bands (many taps, a large arc) are where candidates that pass the
+            // cluster bound usually fail. Each probe is one band from scratch,
+            // O(k log k), instead of the O(k^2) incremental sweep up to band k.
+            detail::BandScratch scratch;
+            std::vector<std::int64_t> probes;
+            // Initial order: the bands that most often exceed the optimum among
+            // candidates passing the cluster bound, measured at n = 512 and 1000,
+            // then the rest of a grid of 5% steps. The band of 80% of the taps was
+            // probed already; n and n / 2 taps are nearly uniform and left to the
+            // sweep.
+            for (const int percent :
+                 {65, 90, 70, 55, 40, 85, 60, 75, 95, 45, 35, 30, 25, 20, 15, 10})
+                if (const std::int64_t taps = percent * std::int64_t{n} / 100;
+                    taps >= 1 && std::find(probes.begin(), probes.end(), taps) == probes.end())
+                    probes.push_back(taps);
+            auto promote = [&](std::size_t index, std::int64_t taps) {
+                if (index == probes.size()) {
+                    if (probes.size() < kProbeBands) probes.push_back(taps);
+                    index = probes.size() - 1;
+                    probes[index] = taps;
+                }
+                std::rotate(probes.begin(), probes.begin() + static_cast<std::ptrdiff_t>(index),
+                            probes.begin() + static_cast<std::ptrdiff_t>(index) + 1);
+            };
+            for (std::size_t k = next++; k < candidates.size(); k = next++) {
+                const std::int64_t bound = best.load(std::memory_order_relaxed);
+                // best only decreases, so a bound above it now is above the final
+                // minimum, and so is every later (larger) bound.
+                if (candidates[k].lower_bound > bound) {
+                    next = candidates.size();
+                    break;
+                }
+                // Any one band's excess is a lower bound on K (K is the maximum
+                // over all bands), so one probe above the bound rejects exactly.
+                bool rejected = false;
+                for (std::size_t b = 0; b < probes.size() && !rejected; ++b) {
+                    if (detail::evaluate_band(n, candidates[k].p, m, probes[b], scratch) > bound) {
+                        rejected = true;
+                        promote(b, probes[b]);
+                    }
+                }
+                if (rejected) continue;
+                std::int64_t failed_band = 0;
+                const std::int64_t value =
+                    detail::evaluate(n, candidates[k].p, m, bound, nullptr, &failed_band);
+                excess[k] = value;
+                if (value > bound) {
+                    if (failed_band > 0) promote(probes.size(), failed_band);
+                    continue;
+                }
+                exact[k] = 1;
+                std::int64_t seen = best.load(std::memory_order_relaxed);
+                while (value < seen && !best.compare_exchange_weak(seen, value)) {
                 }
             }
-            if (rejected) continue;
-            std::int64_t failed_band = 0;
-            const std::int64_t value =
-                detail::evaluate(n, candidates[k].p, m, bound, nullptr, &failed_band);
-            excess[k] = value;
-            if (value > bound) {
-                if (failed_band > 0) promote(probes.size(), failed_band);
-                continue;
-            }
-            exact[k] = 1;
-            std::int64_t seen = best.load(std::memory_order_relaxed);
-            while (value < seen && !best.compare_exchange_weak(seen, value)) {
-            }
-        }
-    });
+        });
+        if (std::find(exact.begin(), exact.end(), 1) != exact.end()) break;
+        ceiling += ceiling / 4 + 1;
+    }
 
     SearchResult result{n, 0, {}, best.load(), m};
     for (std::size_t k = 0; k < candidates.size(); ++k) {

@@ -51,6 +51,18 @@ TEST_CASE("fractional: fast evaluator equals the brute force for every p, n <= 1
     }
 }
 
+TEST_CASE("fractional: the value-only scan equals the brute force", "[discrepancy][oracle]") {
+    // discrepancy_scaled() is what the search runs; it shares no scan code
+    // with the brute force and only the recurrences with discrepancy().
+    for (int n = 1; n <= 36; ++n)
+        for (std::int64_t m : {1, 2, 5})
+            for (std::int64_t p = 1; p <= n * m; p += (m == 1 ? 1 : 3)) {
+                INFO("n = " << n << ", p = " << p << ", m = " << m);
+                CHECK(spiral::discrepancy_scaled(n, p, m) ==
+                      discrepancy_brute_force(n, p, m).scaled);
+            }
+}
+
 TEST_CASE("fractional: refining the denominator scales K and keeps D", "[fractional][property]") {
     // p / m = (k p) / (k m) is the same spiral; only the angular unit shrinks
     // k-fold, so every arc length and 4nm grow k-fold and K = k K.

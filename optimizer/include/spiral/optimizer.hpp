@@ -65,6 +65,10 @@ struct Discrepancy {
 // Throws std::invalid_argument otherwise.
 Discrepancy discrepancy(int n, std::int64_t tau, std::int64_t m = 1);
 
+// K of discrepancy(n, tau, m) alone, without the worst sector: the value the
+// search computes (a leaner scan). Same requirements and exceptions.
+std::int64_t discrepancy_scaled(int n, std::int64_t tau, std::int64_t m = 1);
+
 // The oracle: enumerates every sector whose edges lie on tap coordinates or the
 // domain edges, O(n^4) with 2-D prefix counts (and O(n^2 m) memory). For tests
 // and benchmarks only.
