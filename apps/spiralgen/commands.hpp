@@ -3,6 +3,7 @@
 // a one-line message and exit status 2.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,10 @@ namespace spiralgen {
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// Rejects a turn denominator below 1, or one for which 4 n^2 m (n = max_n)
+// or n m would overflow the optimizer's exact arithmetic, naming the limit.
+void check_denominator(std::int64_t denominator, int max_n);
 
 void add_table_command(CLI::App& app);
 void add_discrepancy_command(CLI::App& app);

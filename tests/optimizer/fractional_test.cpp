@@ -143,7 +143,7 @@ TEST_CASE("fractional: bad denominators and overflowing combinations are rejecte
     CHECK_THROWS_AS(spiral::search(8, spiral::SearchOptions{1, 0}), std::invalid_argument);
     CHECK_THROWS_AS(spiral::search_range(1, 8, spiral::SearchOptions{1, -1}),
                     std::invalid_argument);
-    // 4 n^2 m must stay within 2^60: at n = 65535 that allows m <= 268443648.
+    // 4 n^2 m must stay within 2^60: at n = 65535 that allows m <= 67110912.
     const std::int64_t n = spiral::kMaxTaps;
     const std::int64_t max_m = spiral::kMaxScaledDenominator / (4 * n * n);
     CHECK_NOTHROW(discrepancy_lower_bound(spiral::kMaxTaps, 1, max_m));
