@@ -18,6 +18,7 @@ struct HeaderArgs {
     int taps = 0;
     std::optional<int> tau;
     std::string out;
+    std::int64_t denominator = 1;
 };
 
 void run_header(const HeaderArgs& args) {
@@ -30,15 +31,17 @@ void run_header(const HeaderArgs& args) {
     if (args.taps < 1 || args.taps > spiral::kMaxTaps)
         throw UsageError(fmt::format("--taps {} is outside [1, {}]", args.taps, spiral::kMaxTaps));
     if (args.tau && *args.tau < 1) throw UsageError(fmt::format("--tau {} is below 1", *args.tau));
+    check_denominator(args.denominator, args.taps);
 
     // Recorded canonically and without --out: the bytes depend only on the
     // pass, the tap count and tau, not on where they are written.
     std::string command = fmt::format("spiralgen header --pass {} --taps {}",
                                       codegen::shell_quote(args.pass), args.taps);
     if (args.tau) command += fmt::format(" --tau {}", *args.tau);
+    if (args.denominator != 1) command += fmt::format(" --denominator {}", args.denominator);
 
-    const std::string text =
-        codegen::make_gather_header(args.pass, args.taps, args.tau, codegen::Provenance{command});
+    const std::string text = codegen::make_gather_header(
+        args.pass, args.taps, args.tau, codegen::Provenance{command}, args.denominator);
     if (args.out.empty())
         codegen::write_stdout(text);
     else
@@ -59,6 +62,10 @@ void add_header_command(CLI::App& app) {
                         "how much worse it is)");
     command->add_option("--out", args->out,
                         "Write to this file (atomically) instead of standard output");
+    command
+        ->add_option("--denominator", args->denominator,
+                     "Fractional turns tau = p / M: search p (and read --tau as p)")
+        ->capture_default_str();
     command->callback([args] { run_header(*args); });
 }
 
