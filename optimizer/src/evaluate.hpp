@@ -10,9 +10,12 @@ namespace spiral::detail {
 // K for (n, tau / m), or some value above `bound` as soon as K is known to
 // exceed it. Writes one worst sector when asked (only meaningful if K <= bound)
 // and, when asked, the tap count of the band that first exceeded the bound
-// (0 if none did). The arguments must already be valid (require_valid).
+// (0 if none did). known_lower_bound, a proved lower bound on K, lets the
+// value-only sweep skip bands that cannot exceed it (ignored when a sector is
+// asked for). The arguments must already be valid (require_valid).
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t bound,
-                      Sector* worst_sector, std::int64_t* exceeding_band = nullptr);
+                      Sector* worst_sector, std::int64_t* exceeding_band = nullptr,
+                      std::int64_t known_lower_bound = 0);
 
 struct BandScratch {
     std::vector<std::int64_t> sorted, angles;

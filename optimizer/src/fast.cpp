@@ -230,7 +230,8 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int
 }
 
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t bound,
-                      Sector* worst_sector, std::int64_t* exceeding_band) {
+                      Sector* worst_sector, std::int64_t* exceeding_band,
+                      std::int64_t known_lower_bound) {
     const SpiralLattice lattice(n, tau, m_den);
     const std::int64_t circle = lattice.circle;
     const std::int64_t count_unit = 2 * circle;  // 4nm
@@ -240,6 +241,11 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
     std::int64_t best = open_width(0) * circle;
     std::int64_t best_m = 0;
     BandWorst best_band{best, Sector{false, 0, 0, 0, circle, 0}};
+
+    // A known lower bound on K (0 if none) joins the running maximum: any band
+    // skipped below it is then no larger than K, and K >= it is attained.
+    if (!worst_sector && known_lower_bound > best) best = known_lower_bound;
+    std::int64_t last_excess = 0, last_m = 0;
 
     // Distinct angles of the band's taps, ascending, and how many taps each holds.
     std::vector<std::int64_t> angles;
@@ -258,8 +264,17 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
         }
 
         if (!worst_sector) {
+            // Adding one tap changes a band's worst excess by at most 4nm:
+            // for any fixed arc, the count grows by 0 or 1 (worth 4nm) and
+            // the width by at most 2 (worth at most 2 * 2nm), in opposite
+            // directions for closed and open sectors. So band m cannot beat
+            // `best` while last_excess + 4nm (m - last_m) <= best, and its
+            // scan can be skipped without changing the maximum.
+            if (last_m > 0 && last_excess + count_unit * (m - last_m) <= best) continue;
             const std::int64_t excess =
                 band_excess(angles, taps_at, m, open_width(m), count_unit, circle);
+            last_excess = excess;
+            last_m = m;
             if (excess > best) {
                 best = excess;
                 best_m = m;

@@ -154,8 +154,8 @@ SearchResult search(int n, const SearchOptions& options) {
                 }
                 if (rejected) continue;
                 std::int64_t failed_band = 0;
-                const std::int64_t value =
-                    detail::evaluate(n, candidates[k].p, m, bound, nullptr, &failed_band);
+                const std::int64_t value = detail::evaluate(
+                    n, candidates[k].p, m, bound, nullptr, &failed_band, candidates[k].lower_bound);
                 excess[k] = value;
                 if (value > bound) {
                     if (failed_band > 0) promote(probes.size(), failed_band);
