@@ -7,6 +7,7 @@ packages=(
   libepoxy-dev libglfw3-dev libimgui-dev libembree-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libgbm1
   glslang-tools xvfb xauth
+  python3-matplotlib  # scripts/plot_discrepancy.py
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
