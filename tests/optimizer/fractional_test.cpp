@@ -196,3 +196,17 @@ TEST_CASE("bounds: the cluster bound is tight where all taps share an angle",
         CHECK(discrepancy_lower_bound(n, 1) > spiral::search(n).scaled);
     }
 }
+
+TEST_CASE("fractional: a finer denominator never does worse", "[fractional][search][property]") {
+    // p / m = 2p / 2m, so the search over m = 2k covers every candidate of
+    // m = k: its minimum K (in units 2x finer) is at most twice the coarser one.
+    for (int n = 1; n <= 64; ++n) {
+        std::int64_t previous = -1;
+        for (std::int64_t m : {1, 2, 4, 8}) {
+            const auto r = spiral::search(n, spiral::SearchOptions{1, m});
+            INFO("n = " << n << ", m = " << m);
+            if (previous >= 0) CHECK(r.scaled <= 2 * previous);
+            previous = r.scaled;
+        }
+    }
+}
