@@ -2,6 +2,7 @@
 #
 # Runs the freshly built spiralgen to write, into ${SPIRAL_GENERATED_DIR}:
 #   ao_taps.glsl         spiralgen header --pass ao --taps ${AO_TAPS} [--tau ${AO_TAU}]
+#                        [--denominator ${AO_TURN_DENOMINATOR}] (likewise radiosity)
 #   radiosity_taps.glsl  spiralgen header --pass radiosity --taps ${RADIOSITY_TAPS} [--tau ...]
 #   blur_kernel.glsl     spiralgen blur --radius ${BLUR_RADIUS} [--sigma ${BLUR_SIGMA}]
 #   tau_table.glsl       spiralgen table --format glsl --max-n ${SPIRAL_TAU_TABLE_MAX_N}
@@ -20,8 +21,10 @@
 
 set(AO_TAPS 11 CACHE STRING "Taps of the deep SAO gather (ao_taps.glsl)")
 set(AO_TAU "" CACHE STRING "Spiral turns of the SAO gather; empty = the optimum")
+set(AO_TURN_DENOMINATOR 1 CACHE STRING "Turns of the SAO gather are p / this; 1 = integer turns (AO_TAU is then p)")
 set(RADIOSITY_TAPS 19 CACHE STRING "Taps of the deep radiosity gather (radiosity_taps.glsl)")
 set(RADIOSITY_TAU "" CACHE STRING "Spiral turns of the radiosity gather; empty = the optimum")
+set(RADIOSITY_TURN_DENOMINATOR 1 CACHE STRING "Turns of the radiosity gather are p / this; 1 = integer turns")
 set(BLUR_RADIUS 4 CACHE STRING "Radius in pixels of the bilateral blur kernel (blur_kernel.glsl)")
 set(BLUR_SIGMA "" CACHE STRING "Standard deviation of the blur kernel in pixels; empty = BLUR_RADIUS / 2")
 set(SPIRAL_TAU_TABLE_MAX_N 128 CACHE STRING "Largest tap count in tau_table.glsl / tau_table.hpp")
@@ -32,7 +35,7 @@ file(MAKE_DIRECTORY ${SPIRAL_GENERATED_DIR} ${_spiral_arguments_dir})
 
 # A bad value fails at configure time with the variable's name, not halfway
 # through a build.
-foreach(_variable AO_TAPS RADIOSITY_TAPS SPIRAL_TAU_TABLE_MAX_N)
+foreach(_variable AO_TAPS RADIOSITY_TAPS SPIRAL_TAU_TABLE_MAX_N AO_TURN_DENOMINATOR RADIOSITY_TURN_DENOMINATOR)
   if(NOT "${${_variable}}" MATCHES "^[1-9][0-9]*$")
     message(FATAL_ERROR "${_variable} must be a positive integer, got '${${_variable}}'")
   endif()
@@ -79,9 +82,17 @@ set(_ao_arguments header --pass ao --taps ${AO_TAPS})
 if(NOT AO_TAU STREQUAL "")
   list(APPEND _ao_arguments --tau ${AO_TAU})
 endif()
+# Denominator 1 is left off the command line, so integer headers keep their
+# bytes and their arguments files.
+if(NOT AO_TURN_DENOMINATOR EQUAL 1)
+  list(APPEND _ao_arguments --denominator ${AO_TURN_DENOMINATOR})
+endif()
 set(_radiosity_arguments header --pass radiosity --taps ${RADIOSITY_TAPS})
 if(NOT RADIOSITY_TAU STREQUAL "")
   list(APPEND _radiosity_arguments --tau ${RADIOSITY_TAU})
+endif()
+if(NOT RADIOSITY_TURN_DENOMINATOR EQUAL 1)
+  list(APPEND _radiosity_arguments --denominator ${RADIOSITY_TURN_DENOMINATOR})
 endif()
 set(_blur_arguments blur --radius ${BLUR_RADIUS})
 if(NOT BLUR_SIGMA STREQUAL "")

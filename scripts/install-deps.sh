@@ -8,6 +8,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libgbm1
   glslang-tools xvfb xauth
   clang-14 libfuzzer-14-dev
+  python3-matplotlib  # scripts/plot_discrepancy.py
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

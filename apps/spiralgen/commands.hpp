@@ -3,6 +3,7 @@
 // a one-line message and exit status 2.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,10 @@ struct UsageError : std::runtime_error {
 inline const CLI::Validator non_empty_path(
     [](std::string& path) { return path.empty() ? std::string("must not be empty") : ""; },
     "PATH|-");
+
+// Rejects a turn denominator below 1, or one for which 4 n^2 m (n = max_n)
+// or n m would overflow the optimizer's exact arithmetic, naming the limit.
+void check_denominator(std::int64_t denominator, int max_n);
 
 void add_table_command(CLI::App& app);
 void add_discrepancy_command(CLI::App& app);

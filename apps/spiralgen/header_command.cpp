@@ -20,6 +20,7 @@ struct HeaderArgs {
     int taps = 0;
     std::optional<int> tau;
     std::string out;
+    std::int64_t denominator = 1;
 };
 
 void run_header(const HeaderArgs& args) {
@@ -39,15 +40,17 @@ void run_header(const HeaderArgs& args) {
             "--taps {} is above header's limit of {} taps (the exact search that every header "
             "records grows faster than n^2)",
             args.taps, kMaxHeaderTaps));
+    check_denominator(args.denominator, args.taps);
 
     // Recorded canonically and without --out: the bytes depend only on the
     // pass, the tap count and tau, not on where they are written.
     std::string command = fmt::format("spiralgen header --pass {} --taps {}",
                                       codegen::shell_quote(args.pass), args.taps);
     if (args.tau) command += fmt::format(" --tau {}", *args.tau);
+    if (args.denominator != 1) command += fmt::format(" --denominator {}", args.denominator);
 
-    const std::string text =
-        codegen::make_gather_header(args.pass, args.taps, args.tau, codegen::Provenance{command});
+    const std::string text = codegen::make_gather_header(
+        args.pass, args.taps, args.tau, codegen::Provenance{command}, args.denominator);
     if (args.out.empty())
         codegen::write_stdout(text);
     else
@@ -70,6 +73,10 @@ void add_header_command(CLI::App& app) {
         ->add_option("--out", args->out,
                      "Write to this file (atomically) instead of standard output ('-')")
         ->check(non_empty_path);
+    command
+        ->add_option("--denominator", args->denominator,
+                     "Fractional turns tau = p / M: search p (and read --tau as p)")
+        ->capture_default_str();
     command->callback([args] { run_header(*args); });
 }
 

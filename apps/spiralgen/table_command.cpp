@@ -20,6 +20,7 @@ struct TableArgs {
     std::string format = "md";
     std::string out;
     int jobs = 0;
+    std::int64_t denominator = 1;
 };
 
 void draw_progress(int done, int total) {
@@ -44,19 +45,23 @@ void run_table(const TableArgs& args) {
     if (args.jobs < 0)
         throw UsageError(
             fmt::format("--jobs {} is negative (0 means all hardware threads)", args.jobs));
+    check_denominator(args.denominator, args.max_n);
     const auto format = spiral::codegen::parse_table_format(args.format);
     if (!format)
         throw UsageError(fmt::format("unknown --format '{}' (expected cpp, glsl, json, csv or md)",
                                      args.format));
 
     // The command is recorded without --out or --jobs: neither changes the bytes.
-    const spiral::codegen::Provenance provenance{fmt::format(
-        "spiralgen table --min-n {} --max-n {} --format {}", args.min_n, args.max_n, args.format)};
+    // --denominator 1 is today's table and is recorded as it always was.
+    std::string command = fmt::format("spiralgen table --min-n {} --max-n {} --format {}",
+                                      args.min_n, args.max_n, args.format);
+    if (args.denominator != 1) command += fmt::format(" --denominator {}", args.denominator);
+    const spiral::codegen::Provenance provenance{command};
 
     const bool show_progress = isatty(fileno(stderr)) != 0;
-    const auto results =
-        spiral::search_range(args.min_n, args.max_n, spiral::SearchOptions{args.jobs},
-                             show_progress ? draw_progress : nullptr);
+    const auto results = spiral::search_range(args.min_n, args.max_n,
+                                              spiral::SearchOptions{args.jobs, args.denominator},
+                                              show_progress ? draw_progress : nullptr);
     const std::string text = spiral::codegen::format_table(results, *format, provenance);
     if (args.out.empty())
         spiral::codegen::write_stdout(text);
@@ -80,7 +85,30 @@ void add_table_command(CLI::App& app) {
         ->check(non_empty_path);
     command->add_option("--jobs", args->jobs,
                         "Worker threads; 0 (the default) uses all hardware threads");
+    command
+        ->add_option("--denominator", args->denominator,
+                     "Search fractional turns tau = p / M (default 1: integer tau)")
+        ->capture_default_str();
     command->callback([args] { run_table(*args); });
+}
+
+}  // namespace spiralgen
+
+namespace spiralgen {
+
+void check_denominator(std::int64_t denominator, int max_n) {
+    if (denominator < 1)
+        throw UsageError(fmt::format("--denominator {} must be a positive integer", denominator));
+    const std::int64_t four_n_squared = 4 * std::int64_t{max_n} * max_n;
+    if (denominator > spiral::kMaxScaledDenominator / four_n_squared)
+        throw UsageError(fmt::format(
+            "--denominator {} with n = {} overflows 64-bit exact arithmetic: 4 n^2 m must be at "
+            "most 2^60, so m <= {}",
+            denominator, max_n, spiral::kMaxScaledDenominator / four_n_squared));
+    if (std::int64_t{max_n} * denominator > spiral::kMaxSearchCandidates)
+        throw UsageError(fmt::format(
+            "--denominator {} with n = {} gives n m = {} candidates, above the limit 2^30",
+            denominator, max_n, std::int64_t{max_n} * denominator));
 }
 
 }  // namespace spiralgen

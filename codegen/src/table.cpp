@@ -44,7 +44,35 @@ void check_results(const std::vector<SearchResult>& results) {
                 fmt::format("format_table: n must be >= 1 and strictly ascending, got {} after {}",
                             r.n, previous));
         previous = r.n;
+        if (r.m != results.front().m)
+            throw std::invalid_argument(fmt::format(
+                "format_table: mixed turn denominators {} and {}", results.front().m, r.m));
     }
+    if (results.front().m < 1)
+        throw std::invalid_argument(
+            fmt::format("format_table: turn denominator {} is below 1", results.front().m));
+}
+
+// tau as text: the integer for m = 1, else the fraction p/m as the search
+// found it (not reduced, so p and m read straight off).
+std::string turns_text(std::int64_t p, std::int64_t m) {
+    return m == 1 ? fmt::format("{}", p) : fmt::format("{}/{}", p, m);
+}
+
+std::string join_turns(const std::vector<int>& ties, std::int64_t m, std::string_view separator) {
+    std::vector<std::string> parts;
+    for (const int p : ties) parts.push_back(turns_text(p, m));
+    return fmt::format("{}", fmt::join(parts, separator));
+}
+
+// The lines that say how to read a table of numerators; empty for m = 1 so
+// that integer tables keep their bytes.
+std::string denominator_note(std::int64_t m, std::string_view table, std::string_view name) {
+    if (m == 1) return "";
+    return fmt::format(
+        "// With fractional turns the entries are numerators: {} holds p for\n"
+        "// tau = p / {} turns ({} = {}).\n",
+        table, m, name, m);
 }
 
 std::string join_ties(const std::vector<int>& ties, std::string_view separator) {
@@ -78,9 +106,12 @@ std::string array_body(const std::vector<int>& turns) {
 std::string inputs_text(const std::vector<SearchResult>& results) {
     const bool contiguous =
         results.back().n - results.front().n + 1 == static_cast<int>(results.size());
+    const std::int64_t m = results.front().m;
+    const std::string space =
+        m == 1 ? "tau*(n), the smallest tau in [1, n]"
+               : fmt::format("tau*(n) = p / {0}, the smallest p in [1, {0} n]", m);
     return fmt::format(
-        "tau*(n), the smallest tau in [1, n] minimising the annular-sector discrepancy "
-        "(design.md 1.2), for n = {}..{}{}",
+        "{} minimising the annular-sector discrepancy (design.md 1.2), for n = {}..{}{}", space,
         results.front().n, results.back().n, contiguous ? "" : " (with gaps)");
 }
 
@@ -91,6 +122,7 @@ std::string format_cpp(const std::vector<SearchResult>& results, const Provenanc
         "//\n"
         "// kSpiralTurns[n] is the number of spiral turns for an n-tap pattern.\n"
         "// Entry 0 and every n outside the computed set hold 0, never a valid tau.\n"
+        "{}"
         "#pragma once\n"
         "\n"
         "#include <array>\n"
@@ -99,8 +131,14 @@ std::string format_cpp(const std::vector<SearchResult>& results, const Provenanc
         "\n"
         "inline constexpr int kSpiralTurnsMinTaps = {};\n"
         "inline constexpr int kSpiralTurnsMaxTaps = {};\n"
+        "{}"
         "inline constexpr std::array<int, {}> kSpiralTurns = {{\n",
-        results.front().n, results.back().n, turns.size());
+        denominator_note(results.front().m, "kSpiralTurns[n]", "kSpiralTurnsDenominator"),
+        results.front().n, results.back().n,
+        results.front().m == 1 ? std::string()
+                               : fmt::format("inline constexpr int kSpiralTurnsDenominator = {};\n",
+                                             results.front().m),
+        turns.size());
     out += array_body(turns);
     out += "};\n\n}  // namespace spiral::generated\n";
     return out;
@@ -113,13 +151,19 @@ std::string format_glsl(const std::vector<SearchResult>& results, const Provenan
         "//\n"
         "// SPIRAL_TURNS[n] is the number of spiral turns for an n-tap pattern.\n"
         "// Entry 0 and every n outside the computed set hold 0, never a valid tau.\n"
+        "{}"
         "#ifndef SPIRAL_TURNS_TABLE_GLSL\n"
         "#define SPIRAL_TURNS_TABLE_GLSL\n"
         "\n"
         "#define SPIRAL_TURNS_MIN_TAPS {}\n"
         "#define SPIRAL_TURNS_MAX_TAPS {}\n"
+        "{}"
         "const int SPIRAL_TURNS[SPIRAL_TURNS_MAX_TAPS + 1] = int[](\n",
-        results.front().n, results.back().n);
+        denominator_note(results.front().m, "SPIRAL_TURNS[n]", "SPIRAL_TURNS_DENOMINATOR"),
+        results.front().n, results.back().n,
+        results.front().m == 1
+            ? std::string()
+            : fmt::format("#define SPIRAL_TURNS_DENOMINATOR {}\n", results.front().m));
     out += array_body(turns);
     out += ");\n\n#endif  // SPIRAL_TURNS_TABLE_GLSL\n";
     return out;
@@ -130,9 +174,11 @@ std::string format_json(const std::vector<SearchResult>& results) {
     for (std::size_t i = 0; i < results.size(); ++i) {
         const SearchResult& r = results[i];
         out += fmt::format(
-            "  {{\"n\":{},\"tau\":{},\"ties\":[{}],\"discrepancy\":{{\"num\":{},\"den\":{},"
-            "\"value\":{}}}}}{}\n",
-            r.n, r.tau, join_ties(r.ties, ","), r.scaled, r.denominator(),
+            "  {{\"n\":{},\"tau\":{},\"p\":{},\"m\":{},\"ties\":[{}],\"discrepancy\":{{"
+            "\"num\":{},\"den\":{},\"value\":{}}}}}{}\n",
+            r.n,
+            r.m == 1 ? fmt::format("{}", r.tau) : detail::double_text(double(r.tau) / double(r.m)),
+            r.tau, r.m, join_ties(r.ties, ","), r.scaled, r.denominator(),
             detail::double_text(r.value()), i + 1 < results.size() ? "," : "");
     }
     out += "]\n";
@@ -142,18 +188,21 @@ std::string format_json(const std::vector<SearchResult>& results) {
 std::string format_csv(const std::vector<SearchResult>& results) {
     std::string out = "n,tau,ties,num,den,value\n";
     for (const SearchResult& r : results)
-        out += fmt::format("{},{},{},{},{},{}\n", r.n, r.tau, join_ties(r.ties, " "), r.scaled,
-                           r.denominator(), detail::double_text(r.value()));
+        out += fmt::format("{},{},{},{},{},{}\n", r.n, turns_text(r.tau, r.m),
+                           join_turns(r.ties, r.m, " "), r.scaled, r.denominator(),
+                           detail::double_text(r.value()));
     return out;
 }
 
 std::string format_md(const std::vector<SearchResult>& results) {
-    std::string out =
-        "| n | tau | ties | K/4n^2 | value |\n"
-        "|--:|--:|:--|--:|--:|\n";
+    std::string out = fmt::format(
+        "| n | tau | ties | K/4n^2{} | value |\n"
+        "|--:|--:|:--|--:|--:|\n",
+        results.front().m == 1 ? "" : "m");
     for (const SearchResult& r : results)
-        out += fmt::format("| {} | {} | {} | {}/{} | {} |\n", r.n, r.tau, join_ties(r.ties, ", "),
-                           r.scaled, r.denominator(), detail::double_text(r.value()));
+        out += fmt::format("| {} | {} | {} | {}/{} | {} |\n", r.n, turns_text(r.tau, r.m),
+                           join_turns(r.ties, r.m, ", "), r.scaled, r.denominator(),
+                           detail::double_text(r.value()));
     return out;
 }
 

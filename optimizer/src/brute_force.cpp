@@ -12,7 +12,7 @@ namespace {
 class PrefixCounts {
 public:
     explicit PrefixCounts(const detail::SpiralLattice& lattice)
-        : cols_(lattice.two_n + 1), rows_(lattice.two_n + 2), table_(cols_ * rows_, 0) {
+        : cols_(lattice.circle + 1), rows_(lattice.two_n + 2), table_(cols_ * rows_, 0) {
         // table_(x, y) = number of taps with radial < x and angular < y.
         std::vector<std::int64_t> grid(cols_ * rows_, 0);
         for (std::int64_t i = 0; i < lattice.n; ++i)
@@ -21,7 +21,7 @@ public:
             for (std::int64_t y = 1; y < cols_; ++y)
                 table_[index(x, y)] = grid[index(x, y)] + table_[index(x - 1, y)] +
                                       table_[index(x, y - 1)] - table_[index(x - 1, y - 1)];
-        two_n_ = lattice.two_n;
+        circle_ = lattice.circle;
     }
 
     // Taps with radial in [x_lo, x_hi] and angular among the `length` positions
@@ -29,13 +29,13 @@ public:
     std::int64_t count(std::int64_t x_lo, std::int64_t x_hi, std::int64_t y_start,
                        std::int64_t length) const {
         x_lo = std::max<std::int64_t>(x_lo, 0);
-        x_hi = std::min(x_hi, two_n_);
+        x_hi = std::min(x_hi, rows_ - 2);
         if (x_lo > x_hi || length <= 0) return 0;
-        length = std::min(length, two_n_);
-        y_start %= two_n_;
+        length = std::min(length, circle_);
+        y_start %= circle_;
         const std::int64_t y_end = y_start + length;  // exclusive
-        if (y_end <= two_n_) return rect(x_lo, x_hi, y_start, y_end);
-        return rect(x_lo, x_hi, y_start, two_n_) + rect(x_lo, x_hi, 0, y_end - two_n_);
+        if (y_end <= circle_) return rect(x_lo, x_hi, y_start, y_end);
+        return rect(x_lo, x_hi, y_start, circle_) + rect(x_lo, x_hi, 0, y_end - circle_);
     }
 
 private:
@@ -47,17 +47,17 @@ private:
                table_[index(x_hi + 1, y_lo)] + table_[index(x_lo, y_lo)];
     }
 
-    std::int64_t cols_, rows_, two_n_ = 0;
+    std::int64_t cols_, rows_, circle_ = 0;
     std::vector<std::int64_t> table_;
 };
 
 }  // namespace
 
-Discrepancy discrepancy_brute_force(int n, int tau) {
-    detail::require_valid(n, tau);
-    const detail::SpiralLattice lattice(n, tau);
+Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    const detail::SpiralLattice lattice(n, tau, m);
     const PrefixCounts counts(lattice);
-    const std::int64_t two_n = lattice.two_n, four_n = 4 * lattice.n;
+    const std::int64_t two_n = lattice.two_n, circle = lattice.circle, four_nm = 2 * circle;
 
     std::vector<std::int64_t> radial_edges{0, two_n};
     std::vector<std::int64_t> angular_edges;
@@ -70,10 +70,10 @@ Discrepancy discrepancy_brute_force(int n, int tau) {
     angular_edges.erase(std::unique(angular_edges.begin(), angular_edges.end()),
                         angular_edges.end());
 
-    Discrepancy result{n, tau, -1, {}};
+    Discrepancy result{n, tau, -1, {}, m};
     auto consider = [&](const Sector& sector) {
-        const std::int64_t excess = sector.closed ? four_n * sector.count - sector.scaled_area()
-                                                  : sector.scaled_area() - four_n * sector.count;
+        const std::int64_t excess = sector.closed ? four_nm * sector.count - sector.scaled_area()
+                                                  : sector.scaled_area() - four_nm * sector.count;
         if (excess > result.scaled) {
             result.scaled = excess;
             result.worst = sector;
@@ -85,9 +85,9 @@ Discrepancy discrepancy_brute_force(int n, int tau) {
             const std::int64_t a = radial_edges[lo], b = radial_edges[hi];
             for (const std::int64_t start : angular_edges) {
                 // Arc lengths reaching every other edge, plus the whole circle.
-                std::vector<std::int64_t> lengths{two_n};
+                std::vector<std::int64_t> lengths{circle};
                 for (const std::int64_t end : angular_edges)
-                    lengths.push_back(((end - start) % two_n + two_n) % two_n);
+                    lengths.push_back(((end - start) % circle + circle) % circle);
                 for (const std::int64_t length : lengths) {
                     Sector closed{true, a, b, start, length, counts.count(a, b, start, length + 1)};
                     consider(closed);

@@ -1,13 +1,32 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "spiral/optimizer.hpp"
 
 namespace spiral::detail {
 
-// K for (n, tau), or some value above `bound` as soon as K is known to exceed
-// it. Writes one worst sector when asked (only meaningful if K <= bound).
-std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector);
+// K for (n, tau / m), or some value above `bound` as soon as K is known to
+// exceed it. Writes one worst sector when asked (only meaningful if K <= bound)
+// and, when asked, the tap count of the band that first exceeded the bound
+// (0 if none did). known_lower_bound, a proved lower bound on K, lets the
+// value-only sweep skip bands that cannot exceed it (ignored when a sector is
+// asked for). The arguments must already be valid (require_valid).
+std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t bound,
+                      Sector* worst_sector, std::int64_t* exceeding_band = nullptr,
+                      std::int64_t known_lower_bound = 0);
+
+struct BandScratch {
+    std::vector<std::int64_t> sorted, angles;
+    std::vector<std::int32_t> taps_at, bucket;
+};
+
+// The worst excess over the closed and open sectors of the single band that
+// holds `taps` consecutive taps (1 <= taps <= n): a lower bound on K, computed
+// from scratch in O(taps log taps) or O(nm) for small m, so bands can be
+// probed in any order.
+std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m, std::int64_t taps,
+                           BandScratch& scratch);
 
 }  // namespace spiral::detail

@@ -1,9 +1,9 @@
-// Exact D(n, tau) in O(n^2).
+// Exact D(n, tau / m) in O(n^2), generic in the turn denominator m.
 //
 // Two facts reduce the O(n^4) sectors of the brute force:
 //
 // 1. Lattice translation. Moving from tap i to tap i + k adds 2k to the radial
-//    coordinate and 2k * tau to the angular one, for every tap at once. A
+//    coordinate and 2k * p to the angular one, for every tap at once. A
 //    radial band is therefore characterised, up to a rotation that changes no
 //    count, by how many consecutive taps it holds. The best closed band with m
 //    taps is [x_i, x_{i+m-1}] (width 2(m - 1)); the best open one is
@@ -16,12 +16,17 @@
 //    the taps sorted by angle. A wrapping arc is the complement of a
 //    non-wrapping arc of the opposite kind (closed <-> open), so one linear pass
 //    that tracks the best closed and the best open non-wrapping arc answers
-//    both kinds. Taps are bucketed by angle (n slots), which sorts them for
-//    free and merges taps that share an angle when gcd(tau, n) > 1.
+//    both kinds. The band's distinct angles are kept in a sorted array (one
+//    insertion per band, merging taps that share an angle when gcd(p, nm) > 1),
+//    so band k costs O(k), not O(n): a candidate that fails in an early band
+//    costs next to nothing.
 //
-// Bands are visited with growing m, adding one tap each, so the search can
-// stop as soon as one band already exceeds the bound (branch and bound).
+// Bands are visited with growing tap count k, adding one tap each, so the
+// search can stop as soon as one band already exceeds the bound (branch and
+// bound). In the comments below n and the count multiplier 4n stand for the
+// general 4nm, and 2n on the angle axis for the circle 2nm.
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -121,38 +126,163 @@ BandWorst worst_open(const ArcScan& scan, std::int64_t four_n, std::int64_t two_
     return worst;
 }
 
+// The worst closed and the worst open sector of the band of m taps whose
+// distinct angles (ascending) and multiplicities are given.
+std::array<BandWorst, 2> scan_band(const std::vector<std::int64_t>& angles,
+                                   const std::vector<std::int32_t>& taps_at, std::int64_t m,
+                                   std::int64_t open_width, std::int64_t count_unit,
+                                   std::int64_t circle) {
+    ArcScan closed_scan(2 * (m - 1)), open_scan(open_width);
+    std::int64_t before = 0;
+    for (std::size_t k = 0; k < angles.size(); ++k) {
+        const std::int64_t here = taps_at[k], pos = angles[k];
+        closed_scan.visit(count_unit, pos, before, here);
+        open_scan.visit(count_unit, pos, before, here);
+        before += here;
+    }
+    return {worst_closed(closed_scan, count_unit, circle, m),
+            worst_open(open_scan, count_unit, circle, m)};
+}
+
+std::int64_t band_open_width(std::int64_t n, std::int64_t m) {
+    return m <= n - 2 ? 2 * m + 2 : (m == n - 1 ? 2 * n - 1 : 2 * n);
+}
+
+// scan_band without the sector bookkeeping, for callers that need only the
+// value: the same recurrences as ArcScan, tracking the keys alone.
+std::int64_t band_excess(const std::vector<std::int64_t>& angles,
+                         const std::vector<std::int32_t>& taps_at, std::int64_t m,
+                         std::int64_t open_width, std::int64_t count_unit, std::int64_t circle) {
+    const std::int64_t closed_width = 2 * (m - 1);
+    // Per width: smallest start key, best closed arc, largest end key, best open arc.
+    std::int64_t c_min = kInf, c_closed = -kInf, c_max = -kInf, c_open = kInf;
+    std::int64_t o_min = kInf, o_closed = -kInf, o_max = -kInf, o_open = kInf;
+    std::int64_t before = 0;
+    const std::size_t size = angles.size();
+    for (std::size_t k = 0; k < size; ++k) {
+        const std::int64_t pos = angles[k];
+        const std::int64_t through = before + taps_at[k];
+        const std::int64_t before_key = count_unit * before, through_key = count_unit * through;
+        const std::int64_t c_pos = closed_width * pos, o_pos = open_width * pos;
+        c_min = std::min(c_min, before_key - c_pos);
+        o_min = std::min(o_min, before_key - o_pos);
+        c_closed = std::max(c_closed, through_key - c_pos - c_min);
+        o_closed = std::max(o_closed, through_key - o_pos - o_min);
+        // An open arc ends at a later angle than the one it starts after; c_max
+        // still holds only earlier angles here (kept as -kInf until then).
+        if (c_max > -kInf) {
+            c_open = std::min(c_open, before_key - c_pos - c_max);
+            o_open = std::min(o_open, before_key - o_pos - o_max);
+        }
+        c_max = std::max(c_max, through_key - c_pos);
+        o_max = std::max(o_max, through_key - o_pos);
+        before = through;
+    }
+    std::int64_t worst = c_closed;  // closed sectors, non-wrapping
+    // Open sectors, wrapping: the complement of the best closed non-wrapping arc.
+    worst = std::max(worst, open_width * circle - count_unit * m + o_closed);
+    if (c_max > -kInf && size > 1) {
+        // Closed wrapping: the complement of the best open non-wrapping arc.
+        worst = std::max(worst, count_unit * m - closed_width * circle - c_open);
+        worst = std::max(worst, -o_open);  // open sectors, non-wrapping
+    }
+    return worst;
+}
+
 }  // namespace
 
-std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector) {
-    const SpiralLattice lattice(n, tau);
-    const std::int64_t two_n = lattice.two_n, four_n = 4 * lattice.n;
-    auto open_width = [&](std::int64_t m) {
-        return m <= lattice.n - 2 ? 2 * m + 2 : (m == lattice.n - 1 ? two_n - 1 : two_n);
-    };
+std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int64_t taps,
+                           BandScratch& scratch) {
+    const SpiralLattice lattice(n, tau, m_den);
+    scratch.angles.clear();
+    scratch.taps_at.clear();
+    // Every angle has the parity of p (the circle 2nm is even), so angle / 2
+    // is an exact slot in [0, nm). Bucket by slot when there are few slots,
+    // else sort.
+    const std::int64_t slots = lattice.circle / 2;
+    if (slots <= 16 * lattice.n) {
+        std::vector<std::int32_t>& bucket = scratch.bucket;
+        bucket.assign(static_cast<std::size_t>(slots), 0);
+        for (std::int64_t i = 0; i < taps; ++i)
+            bucket[static_cast<std::size_t>(lattice.angular(i) / 2)] += 1;
+        const std::int64_t parity = lattice.tau % 2;
+        for (std::int64_t slot = 0; slot < slots; ++slot) {
+            if (bucket[static_cast<std::size_t>(slot)] == 0) continue;
+            scratch.angles.push_back(2 * slot + parity);
+            scratch.taps_at.push_back(bucket[static_cast<std::size_t>(slot)]);
+        }
+    } else {
+        std::vector<std::int64_t>& sorted = scratch.sorted;
+        sorted.clear();
+        for (std::int64_t i = 0; i < taps; ++i) sorted.push_back(lattice.angular(i));
+        std::sort(sorted.begin(), sorted.end());
+        for (const std::int64_t angle : sorted) {
+            if (!scratch.angles.empty() && scratch.angles.back() == angle) {
+                scratch.taps_at.back() += 1;
+            } else {
+                scratch.angles.push_back(angle);
+                scratch.taps_at.push_back(1);
+            }
+        }
+    }
+    return band_excess(scratch.angles, scratch.taps_at, taps, band_open_width(lattice.n, taps),
+                       2 * lattice.circle, lattice.circle);
+}
+
+std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t bound,
+                      Sector* worst_sector, std::int64_t* exceeding_band,
+                      std::int64_t known_lower_bound) {
+    const SpiralLattice lattice(n, tau, m_den);
+    const std::int64_t circle = lattice.circle;
+    const std::int64_t count_unit = 2 * circle;  // 4nm
+    auto open_width = [&](std::int64_t m) { return band_open_width(lattice.n, m); };
 
     // The empty open band: the whole circle, nothing inside.
-    std::int64_t best = open_width(0) * two_n;
+    std::int64_t best = open_width(0) * circle;
     std::int64_t best_m = 0;
-    BandWorst best_band{best, Sector{false, 0, 0, 0, two_n, 0}};
+    BandWorst best_band{best, Sector{false, 0, 0, 0, circle, 0}};
 
-    // Slot = angle / 2: all angles share the parity of tau, so this is exact.
-    std::vector<std::int32_t> taps_at_slot(static_cast<std::size_t>(lattice.n), 0);
-    const std::int64_t parity = lattice.tau % 2;
+    // A known lower bound on K (0 if none) joins the running maximum: any band
+    // skipped below it is then no larger than K, and K >= it is attained.
+    if (!worst_sector && known_lower_bound > best) best = known_lower_bound;
+    std::int64_t last_excess = 0, last_m = 0;
+
+    // Distinct angles of the band's taps, ascending, and how many taps each holds.
+    std::vector<std::int64_t> angles;
+    std::vector<std::int32_t> taps_at;
+    angles.reserve(static_cast<std::size_t>(lattice.n));
+    taps_at.reserve(static_cast<std::size_t>(lattice.n));
     for (std::int64_t m = 1; m <= lattice.n && best <= bound; ++m) {
-        taps_at_slot[static_cast<std::size_t>(lattice.angular(m - 1) / 2)] += 1;
-
-        ArcScan closed_scan(2 * (m - 1)), open_scan(open_width(m));
-        std::int64_t before = 0;
-        for (std::int64_t slot = 0; slot < lattice.n; ++slot) {
-            const std::int64_t here = taps_at_slot[static_cast<std::size_t>(slot)];
-            if (here == 0) continue;
-            const std::int64_t pos = 2 * slot + parity;
-            closed_scan.visit(four_n, pos, before, here);
-            open_scan.visit(four_n, pos, before, here);
-            before += here;
+        const std::int64_t angle = lattice.angular(m - 1);
+        const auto at = std::lower_bound(angles.begin(), angles.end(), angle);
+        const auto index = at - angles.begin();
+        if (at != angles.end() && *at == angle) {
+            taps_at[static_cast<std::size_t>(index)] += 1;
+        } else {
+            angles.insert(at, angle);
+            taps_at.insert(taps_at.begin() + index, 1);
         }
-        for (const BandWorst& band : {worst_closed(closed_scan, four_n, two_n, m),
-                                      worst_open(open_scan, four_n, two_n, m)}) {
+
+        if (!worst_sector) {
+            // Adding one tap changes a band's worst excess by at most 4nm:
+            // for any fixed arc, the count grows by 0 or 1 (worth 4nm) and
+            // the width by at most 2 (worth at most 2 * 2nm), in opposite
+            // directions for closed and open sectors. So band m cannot beat
+            // `best` while last_excess + 4nm (m - last_m) <= best, and its
+            // scan can be skipped without changing the maximum.
+            if (last_m > 0 && last_excess + count_unit * (m - last_m) <= best) continue;
+            const std::int64_t excess =
+                band_excess(angles, taps_at, m, open_width(m), count_unit, circle);
+            last_excess = excess;
+            last_m = m;
+            if (excess > best) {
+                best = excess;
+                best_m = m;
+            }
+            continue;
+        }
+        for (const BandWorst& band :
+             scan_band(angles, taps_at, m, open_width(m), count_unit, circle)) {
             if (band.excess > best) {
                 best = band.excess;
                 best_band = band;
@@ -160,6 +290,7 @@ std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector) 
             }
         }
     }
+    if (exceeding_band) *exceeding_band = best > bound ? best_m : 0;
 
     if (worst_sector) {
         // Place the canonical band (taps 0 .. m-1) where it really fits.
@@ -172,7 +303,7 @@ std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector) 
             // (x_0, x_{m+1}) holds taps 1 .. m: the canonical taps moved by one.
             sector.radial_lo = 1;
             sector.radial_hi = 2 * m + 3;
-            sector.arc_start = (sector.arc_start + 2 * lattice.tau) % two_n;
+            sector.arc_start = (sector.arc_start + 2 * lattice.tau) % circle;
         } else {
             sector.radial_lo = 0;
             sector.radial_hi = open_width(m);
@@ -184,12 +315,21 @@ std::int64_t evaluate(int n, int tau, std::int64_t bound, Sector* worst_sector) 
 
 }  // namespace detail
 
-Discrepancy discrepancy(int n, int tau) {
-    detail::require_valid(n, tau);
-    Discrepancy result{n, tau, 0, {}};
+Discrepancy discrepancy(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    Discrepancy result{n, tau, 0, {}, m};
     result.scaled =
-        detail::evaluate(n, tau, std::numeric_limits<std::int64_t>::max(), &result.worst);
+        detail::evaluate(n, tau, m, std::numeric_limits<std::int64_t>::max(), &result.worst);
     return result;
+}
+
+}  // namespace spiral
+
+namespace spiral {
+
+std::int64_t discrepancy_scaled(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    return detail::evaluate(n, tau, m, std::numeric_limits<std::int64_t>::max(), nullptr);
 }
 
 }  // namespace spiral

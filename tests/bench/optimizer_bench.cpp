@@ -1,12 +1,15 @@
-// Speed of the optimizer: the tau table at growing ranges, the fast evaluator
-// against the brute-force oracle, and peak memory. Prints Markdown for the
-// README. Timings are medians of repeated runs in this one process.
+// Speed of the optimizer: the tau table at growing ranges (integer turns and
+// tau = p/8), the fast evaluator against the brute-force oracle, and peak
+// memory. Prints Markdown for the README. Timings are medians of repeated runs
+// in this one process; the tables run on 2 threads, like `spiralgen table
+// --jobs 2` on the 2-core build machine.
 //
-//   optimizer_bench [--quick]
+//   optimizer_bench [--quick] [--full]   (--full adds the table 1..4096 once)
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <ctime>
 #include <functional>
@@ -60,16 +63,33 @@ long peak_rss_kib() {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+    bool quick = false, full = false;
+    for (int a = 1; a < argc; ++a) {
+        quick = quick || std::strcmp(argv[a], "--quick") == 0;
+        full = full || std::strcmp(argv[a], "--full") == 0;
+    }
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     fmt::print("hardware threads: {}\n\n", threads);
 
     fmt::print(
-        "| table range | repetitions | median wall (s) | median CPU (s) |\n|:--|--:|--:|--:|\n");
-    for (const auto& [max_n, reps] :
-         std::vector<std::pair<int, int>>{{99, 15}, {256, 7}, {1024, quick ? 1 : 3}}) {
-        const Sample s = median([max_n = max_n] { spiral::search_range(1, max_n); }, reps);
-        fmt::print("| 1..{} | {} | {:.3f} | {:.3f} |\n", max_n, reps, s.wall, s.cpu);
+        "| table range | m | jobs | repetitions | median wall (s) | median CPU (s) |\n"
+        "|:--|--:|--:|--:|--:|--:|\n");
+    struct Row {
+        int max_n;
+        std::int64_t m;
+        int reps;
+    };
+    std::vector<Row> rows{
+        {99, 1, 15}, {256, 1, 7}, {1024, 1, quick ? 1 : 5}, {256, 8, quick ? 1 : 3}};
+    if (full) rows.push_back({4096, 1, 1});
+    for (const Row& row : rows) {
+        const Sample s = median(
+            [&] {
+                spiral::search_range(1, row.max_n, spiral::SearchOptions{2, row.m});
+            },
+            row.reps);
+        fmt::print("| 1..{} | {} | 2 | {} | {:.3f} | {:.3f} |\n", row.max_n, row.m, row.reps,
+                   s.wall, s.cpu);
     }
 
     fmt::print(

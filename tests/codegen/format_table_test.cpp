@@ -55,16 +55,43 @@ TEST_CASE("json is one object per result with the exact fraction", "[codegen][ta
     const std::string expected =
         "[\n"
         "  "
-        "{\"n\":2,\"tau\":1,\"ties\":[1],\"discrepancy\":{\"num\":12,\"den\":16,\"value\":0.75}},\n"
-        "  {\"n\":3,\"tau\":1,\"ties\":[1,2],\"discrepancy\":{\"num\":24,\"den\":36,"
-        "\"value\":0.6666666666666666}},\n"
+        "{\"n\":2,\"tau\":1,\"p\":1,\"m\":1,\"ties\":[1],\"discrepancy\":{\"num\":12,\"den\":16,"
+        "\"value\":0.75}},\n"
+        "  {\"n\":3,\"tau\":1,\"p\":1,\"m\":1,\"ties\":[1,2],\"discrepancy\":{\"num\":24,"
+        "\"den\":36,\"value\":0.6666666666666666}},\n"
         "  "
-        "{\"n\":5,\"tau\":2,\"ties\":[2,3],\"discrepancy\":{\"num\":44,\"den\":100,\"value\":0.44}}"
+        "{\"n\":5,\"tau\":2,\"p\":2,\"m\":1,\"ties\":[2,3],\"discrepancy\":{\"num\":44,"
+        "\"den\":100,\"value\":0.44}}"
         "\n"
         "]\n";
     CHECK(format_table(sample(), TableFormat::json, kProvenance) == expected);
     // The printed value must read back as exactly K / 4n^2.
     CHECK(std::strtod("0.6666666666666666", nullptr) == 24.0 / 36.0);
+}
+
+TEST_CASE("fractional tables carry p, m and the denominator", "[codegen][table][fractional]") {
+    // n = 16, m = 8: tau = 49/8 with K = 1420 of 4 n^2 m = 8192 (checked
+    // against the brute force in the optimizer tests); the values here are
+    // typed in, so the formatter is checked, not the search.
+    const std::vector<spiral::SearchResult> results{{16, 49, {49, 79}, 1420, 8}};
+    CHECK(format_table(results, TableFormat::json, kProvenance) ==
+          "[\n  {\"n\":16,\"tau\":6.125,\"p\":49,\"m\":8,\"ties\":[49,79],\"discrepancy\":{"
+          "\"num\":1420,\"den\":8192,\"value\":0.17333984375}}\n]\n");
+    CHECK(format_table(results, TableFormat::csv, kProvenance) ==
+          "n,tau,ties,num,den,value\n16,49/8,49/8 79/8,1420,8192,0.17333984375\n");
+    const std::string md = format_table(results, TableFormat::md, kProvenance);
+    CHECK(md.find("| K/4n^2m |") != std::string::npos);
+    CHECK(md.find("| 16 | 49/8 | 49/8, 79/8 | 1420/8192 |") != std::string::npos);
+    const std::string cpp = format_table(results, TableFormat::cpp, kProvenance);
+    CHECK(cpp.find("inline constexpr int kSpiralTurnsDenominator = 8;\n") != std::string::npos);
+    CHECK(cpp.find(" 49\n") != std::string::npos);
+    const std::string glsl = format_table(results, TableFormat::glsl, kProvenance);
+    CHECK(glsl.find("#define SPIRAL_TURNS_DENOMINATOR 8\n") != std::string::npos);
+    // Integer tables say nothing about a denominator.
+    CHECK(format_table(sample(), TableFormat::cpp, kProvenance).find("Denominator") ==
+          std::string::npos);
+    const std::vector<spiral::SearchResult> mixed{{2, 1, {1}, 12, 1}, {3, 2, {2}, 40, 2}};
+    CHECK_THROWS_AS(format_table(mixed, TableFormat::csv, kProvenance), std::invalid_argument);
 }
 
 TEST_CASE("csv has a header row and space-separated ties", "[codegen][table]") {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <utility>
 #include <stdexcept>
 #include <string>
@@ -123,6 +124,56 @@ TEST_CASE("taps match the long-double oracle for every n <= 300", "[codegen][gat
         }
     }
     CHECK(compared > 300000);
+}
+
+TEST_CASE("fractional turns match the long-double oracle", "[codegen][gather][fractional]") {
+    // tau = p / m: the oracle takes the angle 2*pi*(p/m)*alpha in long double.
+    const long double pi = 3.141592653589793238462643383279502884L;
+    for (int n = 1; n <= 64; ++n)
+        for (long long m : {2LL, 3LL, 8LL})
+            for (long long p : {1LL, 3LL, 49LL, m * n - 1, m * n + 5}) {
+                if (p < 1) continue;
+                const auto taps = spiral_taps(n, p, m);
+                REQUIRE(taps.size() == static_cast<std::size_t>(n));
+                for (int i = 0; i < n; ++i) {
+                    const long double alpha = (i + 0.5L) / n;
+                    const long double angle =
+                        2 * pi * static_cast<long double>(p) / static_cast<long double>(m) * alpha;
+                    const auto& tap = taps[static_cast<std::size_t>(i)];
+                    INFO("n = " << n << ", p = " << p << ", m = " << m << ", i = " << i);
+                    REQUIRE(close_to(tap.x, alpha * std::cos(angle), alpha));
+                    REQUIRE(close_to(tap.y, alpha * std::sin(angle), alpha));
+                }
+            }
+    // m = 1 and the same turns written as 4p / 4 give the same bits.
+    for (int n = 1; n <= 64; ++n)
+        for (int tau = 1; tau <= n; ++tau) {
+            const auto a = spiral_taps(n, tau), b = spiral_taps(n, 4 * tau, 4);
+            for (int i = 0; i < n; ++i) {
+                CHECK(bits(a[static_cast<std::size_t>(i)].x) ==
+                      bits(b[static_cast<std::size_t>(i)].x));
+                CHECK(bits(a[static_cast<std::size_t>(i)].y) ==
+                      bits(b[static_cast<std::size_t>(i)].y));
+            }
+        }
+    CHECK_THROWS_AS(spiral_taps(4, 1, 0), std::invalid_argument);
+}
+
+TEST_CASE("the gather header for fractional turns states p/m and its discrepancy",
+          "[codegen][gather][fractional]") {
+    const std::string text =
+        spiral::codegen::make_gather_header("ao", 16, std::nullopt, {"test"}, 8);
+    // n = 16, m = 8: tau = 49/8, K = 1420 of 8192 (the brute force confirms
+    // this in the optimizer tests).
+    CHECK(text.find("#define AO_NUM_SPIRAL_TURNS 6.125\n") != std::string::npos);
+    CHECK(text.find("#define AO_SPIRAL_TURNS_NUMERATOR 49\n") != std::string::npos);
+    CHECK(text.find("#define AO_SPIRAL_TURNS_DENOMINATOR 8\n") != std::string::npos);
+    CHECK(text.find("D(16, 49/8) = 1420/8192") != std::string::npos);
+    const std::string by_hand =
+        spiral::codegen::make_gather_header("ao", 16, 56, {"test"}, 8);  // 56/8 = 7 turns
+    CHECK(by_hand.find("tau = 56/8 (set by hand; NOT the optimum)") != std::string::npos);
+    // 7 turns: D(16, 7) = 192/1024, i.e. 1536 in units of 1/8192.
+    CHECK(by_hand.find("D(16, 56/8) = 1536/8192") != std::string::npos);
 }
 
 TEST_CASE("the exact angle reduction gives exact symmetries", "[codegen][gather]") {

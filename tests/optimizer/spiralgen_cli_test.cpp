@@ -1,6 +1,7 @@
 // The table and discrepancy subcommands, driven through the real executable.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -43,9 +44,62 @@ TEST_CASE("table json carries the search's exact values", "[cli][table]") {
         ties.append(std::to_string(tau));
     }
     const std::string object =
-        "{\"n\":12,\"tau\":" + std::to_string(expected.tau) + ",\"ties\":[" + ties +
+        "{\"n\":12,\"tau\":" + std::to_string(expected.tau) +
+        ",\"p\":" + std::to_string(expected.tau) + ",\"m\":1,\"ties\":[" + ties +
         "],\"discrepancy\":{\"num\":" + std::to_string(expected.scaled) + ",\"den\":576,";
     CHECK(result.out.find(object) != std::string::npos);
+}
+
+TEST_CASE("table --denominator searches fractional turns", "[cli][table][fractional]") {
+    const auto result = spiralgen("table --min-n 16 --max-n 16 --denominator 8 --format json");
+    REQUIRE(result.status == 0);
+    // Confirmed by the brute force in fractional_test.cpp.
+    CHECK(result.out.find("{\"n\":16,\"tau\":6.125,\"p\":49,\"m\":8,\"ties\":[49,79],"
+                          "\"discrepancy\":{\"num\":1420,\"den\":8192,") != std::string::npos);
+    const auto one = spiralgen("table --max-n 40 --denominator 4 --format csv --jobs 1");
+    const auto three = spiralgen("table --max-n 40 --denominator 4 --format csv --jobs 3");
+    REQUIRE(one.status == 0);
+    CHECK(one.out == three.out);
+    // --denominator 1 is the integer table, byte for byte, provenance included.
+    CHECK(spiralgen("table --max-n 30 --format cpp --denominator 1").out ==
+          spiralgen("table --max-n 30 --format cpp").out);
+}
+
+TEST_CASE("discrepancy --turns takes real turns and the golden angle",
+          "[cli][discrepancy][fractional]") {
+    // A decimal that is a short fraction is evaluated exactly: 6.125 = 49/8.
+    const auto exact = spiralgen("discrepancy --n 16 --turns 6.125");
+    REQUIRE(exact.status == 0);
+    CHECK(exact.out.find("approximated by tau = 49/8") != std::string::npos);
+    CHECK(exact.out.find("D(16, 49/8) = 1420 / 8192") != std::string::npos);
+    // Integer turns agree with --tau.
+    const auto seven = spiralgen("discrepancy --n 16 --turns 7");
+    CHECK(seven.out.find("D(16, 7) = 192 / 1024") != std::string::npos);
+    // Golden: tau = 16 (2 - phi) = 6.1114561800016824... The printed value must
+    // lie within the stated bound of D at another rational, 6111456 / 10^6,
+    // which is within 1.9e-7 of tau, so within 2 * 1.9e-7 in D (the Lipschitz
+    // bound proved in discrepancy_command.cpp).
+    const auto golden = spiralgen("discrepancy --n 16 --turns golden --format json");
+    REQUIRE(golden.status == 0);
+    const auto at = golden.out.find("\"value\":");
+    REQUIRE(at != std::string::npos);
+    const double value = std::stod(golden.out.substr(at + 8));
+    const double nearby = spiral::discrepancy(16, 6111456, 1000000).value();
+    CHECK(std::abs(value - nearby) <= 4e-7);
+    CHECK(std::abs(value - nearby) > 0);  // a different rational, not the same number
+}
+
+TEST_CASE("a bad --denominator leaves no file", "[cli][errors][fractional]") {
+    const auto path = std::filesystem::temp_directory_path() / "spiralgen_denominator_test.md";
+    std::filesystem::remove(path);
+    const auto result = spiralgen("table --max-n 8 --denominator 0 --out '" + path.string() + "'");
+    CHECK(result.status == 2);
+    CHECK(result.err.find("--denominator 0") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(path));
+    const auto overflow = spiralgen("table --max-n 65535 --denominator 67110913");
+    CHECK(overflow.status == 2);
+    CHECK(overflow.err.find("2^60") != std::string::npos);
+    CHECK(overflow.err.find("67110912") != std::string::npos);
 }
 
 TEST_CASE("discrepancy reports the exact fraction and the worst sector", "[cli][discrepancy]") {
@@ -69,7 +123,14 @@ TEST_CASE("bad input gives one line on stderr and exit status 2", "[cli][errors]
         "discrepancy --n 11 --tau -4", "discrepancy --n 11",
         "discrepancy --n 11 --tau 3 --format xml", "table --min-n 0", "table --max-n 99999",
         "table --min-n 10 --max-n 5", "table --format yaml", "table --jobs -2", "table --max-n x",
-        "table --out /nonexistent-dir/sub/table.md", "frobnicate", "");
+        "table --out /nonexistent-dir/sub/table.md", "frobnicate", "",
+        "table --max-n 8 --denominator 0", "table --max-n 8 --denominator -2",
+        "table --max-n 8 --denominator eight", "table --max-n 8 --denominator 2.5",
+        "table --max-n 65535 --denominator 67110913", "table --max-n 2 --denominator 999999999",
+        "discrepancy --n 16 --turns 0", "discrepancy --n 16 --turns -2",
+        "discrepancy --n 16 --turns 16.5", "discrepancy --n 16 --turns nan",
+        "discrepancy --n 16 --turns inf", "discrepancy --n 16 --turns six",
+        "discrepancy --n 16 --turns 3 --tau 3", "discrepancy --n 16 --turns 1e-30");
     INFO("spiralgen " << arguments);
     const auto result = spiralgen(arguments);
     CHECK(result.status == 2);

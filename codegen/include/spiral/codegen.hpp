@@ -82,7 +82,8 @@ struct Tap {
 // std::invalid_argument otherwise). The angle is reduced exactly before any
 // floating point is involved (tap i is at ((2i+1) * tau mod 2n) / (2n) turns),
 // so a large tau loses nothing and quarter turns give exact 0 and +-1.
-std::vector<Tap> spiral_taps(int n, int tau);
+// With a denominator m the spiral makes tau / m turns (tau is the numerator).
+std::vector<Tap> spiral_taps(int n, std::int64_t tau, std::int64_t denominator = 1);
 
 // What a gather header states. `chosen` is the pattern written out; `optimum`
 // is what search(n) gives. When chosen.tau is not among optimum.ties the
@@ -95,7 +96,9 @@ struct GatherSpec {
 
 // The GLSL header text. Symbols, with P = macro_prefix(pass):
 //   #define P_NUM_TAPS n
-//   #define P_NUM_SPIRAL_TURNS tau
+//   #define P_NUM_SPIRAL_TURNS tau           (a float literal p/m when m > 1,
+//   #define P_SPIRAL_TURNS_NUMERATOR p        with these two lines added)
+//   #define P_SPIRAL_TURNS_DENOMINATOR m
 //   const vec2  P_TAP_OFFSETS[P_NUM_TAPS]  unit offsets alpha_i * (cos, sin)
 //   const float P_TAP_ALPHAS[P_NUM_TAPS]   alpha_i (radius fraction, for the MIP)
 // inside an include guard SPIRAL_P_TAPS_GLSL. Throws std::invalid_argument on
@@ -105,9 +108,10 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
 // Runs the optimizer for exactly this n (and D(n, tau) when tau is given) and
 // formats the header. tau, when given, may be any value >= 1: tau and
 // tau + 2n give the same pattern, tau + n the same one turned by half a turn
-// (so the same discrepancy), and the header states the tau as given.
+// (so the same discrepancy), and the header states the tau as given. With a
+// denominator m the search is over tau = p / m and `tau` is the numerator p.
 std::string make_gather_header(std::string_view pass, int taps, std::optional<int> tau,
-                               const Provenance& provenance);
+                               const Provenance& provenance, std::int64_t denominator = 1);
 
 // ---------------------------------------------------------------------------
 // Blur header

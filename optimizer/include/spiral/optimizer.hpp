@@ -7,6 +7,13 @@
 // in y. A sector of radial width W and arc length L (both in half units) has
 // 4n^2 * local = |4n * count - W * L|, so D(n, tau) = K / (4n^2) for an integer
 // K, and everything below is integer arithmetic.
+//
+// Fractional turns tau = p / m (design.md section 1.3) refine the angular unit
+// to 1/(2nm): tap i sits at angle ((2i + 1) * p) mod 2nm, a sector's arc length
+// L is counted in that unit, and 4n^2 m * local = |4nm * count - W * L|, so
+// D = K / (4 n^2 m). m = 1 is the integer case. Wherever a turn count appears
+// below as an integer `tau` together with a denominator m, it is the numerator
+// p of tau = p / m.
 #pragma once
 
 #include <cstdint>
@@ -19,10 +26,16 @@ namespace spiral {
 // the bound keeps one exact evaluation (O(n^2)) within seconds.
 inline constexpr int kMaxTaps = 65535;
 
-// A closed or open annular sector, in half units of the tap count it was
-// computed for. The arc starts at arc_start and runs arc_length forward
-// (wrapping past 2n); arc_length == 2n is the whole circle. For an open sector
-// the whole circle means "every angle except arc_start".
+// Largest 4 n^2 m accepted: every intermediate value of an evaluation (counts
+// times 4nm, widths times arc lengths, and differences of two such) then stays
+// far inside 64-bit signed arithmetic.
+inline constexpr std::int64_t kMaxScaledDenominator = std::int64_t{1} << 60;
+
+// A closed or open annular sector. Radial coordinates are in units of 1/(2n)
+// of the radius, angular ones in units of 1/(2nm) of a turn. The arc starts at
+// arc_start and runs arc_length forward (wrapping past 2nm); arc_length == 2nm
+// is the whole circle. For an open sector the whole circle means "every angle
+// except arc_start".
 struct Sector {
     bool closed = true;
     std::int64_t radial_lo = 0;  // alpha * 2n
@@ -32,44 +45,64 @@ struct Sector {
     std::int64_t count = 0;  // taps inside (boundary included iff closed)
 
     std::int64_t width() const { return radial_hi - radial_lo; }
-    // Weighted area times 4n^2.
+    // Weighted area times 4n^2 m.
     std::int64_t scaled_area() const { return width() * arc_length; }
 };
 
 struct Discrepancy {
     int n = 0;
-    int tau = 0;
-    std::int64_t scaled = 0;  // K: D = K / (4 n^2)
+    std::int64_t tau = 0;     // numerator p: the spiral makes tau / m turns
+    std::int64_t scaled = 0;  // K: D = K / (4 n^2 m)
     Sector worst;             // one sector attaining K
+    std::int64_t m = 1;       // denominator of the turns
 
-    std::int64_t denominator() const { return 4 * std::int64_t{n} * n; }
+    std::int64_t denominator() const { return 4 * std::int64_t{n} * n * m; }
     double value() const { return double(scaled) / double(denominator()); }
 };
 
-// Exact D(n, tau) in O(n^2) time and O(n) memory. Requires 1 <= n <= kMaxTaps
-// and tau >= 1 (tau is taken modulo n). Throws std::invalid_argument otherwise.
-Discrepancy discrepancy(int n, int tau);
+// Exact D(n, tau / m) in O(n^2) time and O(n) memory. Requires
+// 1 <= n <= kMaxTaps, tau >= 1, m >= 1 and 4 n^2 m <= kMaxScaledDenominator.
+// Throws std::invalid_argument otherwise.
+Discrepancy discrepancy(int n, std::int64_t tau, std::int64_t m = 1);
+
+// K of discrepancy(n, tau, m) alone, without the worst sector: the value the
+// search computes (a leaner scan). Same requirements and exceptions.
+std::int64_t discrepancy_scaled(int n, std::int64_t tau, std::int64_t m = 1);
 
 // The oracle: enumerates every sector whose edges lie on tap coordinates or the
-// domain edges, O(n^4) with 2-D prefix counts. For tests and benchmarks only.
-Discrepancy discrepancy_brute_force(int n, int tau);
+// domain edges, O(n^4) with 2-D prefix counts (and O(n^2 m) memory). For tests
+// and benchmarks only.
+Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m = 1);
+
+// A proved lower bound on K of discrepancy(n, tau, m), in O(log n): clusters
+// of taps that a short arc of a narrow band holds (see bounds.cpp). The search
+// rejects a candidate whose bound exceeds the best K found without scanning it.
+std::int64_t discrepancy_lower_bound(int n, std::int64_t tau, std::int64_t m = 1);
 
 struct SearchResult {
     int n = 0;
-    int tau = 0;              // smallest minimiser in [1, n]
-    std::vector<int> ties;    // every minimiser in [1, n], ascending
+    int tau = 0;              // smallest minimiser p in [1, nm] (turns p / m)
+    std::vector<int> ties;    // every minimiser in [1, nm], ascending
     std::int64_t scaled = 0;  // K of the minimum
+    std::int64_t m = 1;       // denominator of the turns searched
 
-    std::int64_t denominator() const { return 4 * std::int64_t{n} * n; }
+    std::int64_t denominator() const { return 4 * std::int64_t{n} * n * m; }
     double value() const { return double(scaled) / double(denominator()); }
 };
 
+// Largest n * m the search accepts: every candidate numerator fits an int.
+inline constexpr std::int64_t kMaxSearchCandidates = std::int64_t{1} << 30;
+
 struct SearchOptions {
-    int jobs = 0;  // worker threads; 0 = all hardware threads
+    int jobs = 0;                  // worker threads; 0 = all hardware threads
+    std::int64_t denominator = 1;  // m: search the turns p / m, p in [1, nm]
 };
 
-// The tau in [1, n] minimising D(n, tau). Exhaustive (branch and bound never
+// The p in [1, nm] minimising D(n, p / m), m = options.denominator; m = 1 is
+// the integer search over tau in [1, n]. Exhaustive (branch and bound never
 // drops a candidate that could tie), so the result does not depend on jobs.
+// Throws std::invalid_argument for n outside [1, kMaxTaps], m < 1,
+// 4 n^2 m > kMaxScaledDenominator or n m > kMaxSearchCandidates.
 SearchResult search(int n, const SearchOptions& options = {});
 
 // search() for every n in [min_n, max_n], threads spread over n. progress, if
