@@ -13,9 +13,6 @@
 namespace spiralgen {
 namespace {
 
-// gaussian_kernel's own limit; a wider blur belongs in a different algorithm.
-constexpr int kMaxBlurRadius = 1024;
-
 struct BlurArgs {
     int radius = -1;
     std::optional<double> sigma;
@@ -24,9 +21,9 @@ struct BlurArgs {
 
 void run_blur(const BlurArgs& args) {
     namespace codegen = spiral::codegen;
-    if (args.radius < 0 || args.radius > kMaxBlurRadius)
-        throw UsageError(
-            fmt::format("--radius {} is outside [0, {}]", args.radius, kMaxBlurRadius));
+    if (args.radius < 0 || args.radius > spiral::codegen::kMaxBlurRadius)
+        throw UsageError(fmt::format("--radius {} is outside [0, {}]", args.radius,
+                                     spiral::codegen::kMaxBlurRadius));
     // BLUR_SIGMA is a GLSL float: outside the normal float range it would
     // be written as inf.0 or 0.0, and the header would not compile (or mean 0).
     if (args.sigma && !codegen::valid_blur_sigma(*args.sigma))

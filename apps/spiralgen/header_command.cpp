@@ -13,8 +13,6 @@
 namespace spiralgen {
 namespace {
 
-constexpr int kMaxHeaderTaps = 4096;
-
 struct HeaderArgs {
     std::string pass;
     int taps = 0;
@@ -30,16 +28,13 @@ void run_header(const HeaderArgs& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(fmt::format("--pass: {}", e.what()));
     }
-    if (args.taps < 1 || args.taps > spiral::kMaxTaps)
-        throw UsageError(fmt::format("--taps {} is outside [1, {}]", args.taps, spiral::kMaxTaps));
+    if (args.taps < 1) throw UsageError(fmt::format("--taps {} is below 1", args.taps));
     if (args.tau && *args.tau < 1) throw UsageError(fmt::format("--tau {} is below 1", *args.tau));
-    // The exact tau search grows faster than n^2 (4096 taps: seconds; 16384:
-    // most of a minute; 65535: hours), so a header stops where it is quick.
-    if (args.taps > kMaxHeaderTaps)
+    if (args.taps > codegen::kMaxGatherTaps)
         throw UsageError(fmt::format(
             "--taps {} is above header's limit of {} taps (the exact search that every header "
             "records grows faster than n^2)",
-            args.taps, kMaxHeaderTaps));
+            args.taps, codegen::kMaxGatherTaps));
     check_denominator(args.denominator, args.taps);
 
     // Recorded canonically and without --out: the bytes depend only on the
@@ -65,7 +60,10 @@ void add_header_command(CLI::App& app) {
         "header", "Write the GLSL header of a gathering pass: tap count, turns, offsets, alphas");
     command->add_option("--pass", args->pass, "Pass name (free text; becomes the macro prefix)")
         ->required();
-    command->add_option("--taps", args->taps, "Number of taps, 1 to 4096")->required();
+    command
+        ->add_option("--taps", args->taps,
+                     fmt::format("Number of taps, 1 to {}", spiral::codegen::kMaxGatherTaps))
+        ->required();
     command->add_option("--tau", args->tau,
                         "Number of spiral turns, overriding the optimum (the header then says "
                         "how much worse it is)");

@@ -20,10 +20,9 @@ bool valid_blur_sigma(double sigma) {
 }
 
 BlurKernel gaussian_kernel(int radius, std::optional<double> sigma) {
-    constexpr int max_radius = 1024;
-    if (radius < 0 || radius > max_radius)
+    if (radius < 0 || radius > kMaxBlurRadius)
         throw std::invalid_argument(
-            fmt::format("blur radius must be in [0, {}], got {}", max_radius, radius));
+            fmt::format("blur radius must be in [0, {}], got {}", kMaxBlurRadius, radius));
     if (sigma && !valid_blur_sigma(*sigma))
         throw std::invalid_argument(
             fmt::format("blur sigma must be a normal float > 0, got {}", *sigma));

@@ -228,9 +228,9 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
 std::string make_gather_header(std::string_view pass, int taps, std::optional<int> tau,
                                const Provenance& provenance, std::int64_t denominator) {
     macro_prefix(pass);  // reject a bad name before spending time on the search
-    if (taps < 1 || taps > kMaxTaps)
+    if (taps < 1 || taps > kMaxGatherTaps)
         throw std::invalid_argument(
-            fmt::format("tap count must be in [1, {}], got {}", kMaxTaps, taps));
+            fmt::format("tap count must be in [1, {}], got {}", kMaxGatherTaps, taps));
     if (tau && *tau < 1) throw std::invalid_argument(fmt::format("tau must be >= 1, got {}", *tau));
     GatherSpec spec;
     spec.pass = std::string(pass);

@@ -121,10 +121,17 @@ std::string make_gather_header(std::string_view pass, int taps, std::optional<in
 // centre; the kernel is cut there rather than fading to nothing.
 double default_blur_sigma(int radius);
 
+// Widest blur kernel; a wider blur belongs in a different algorithm.
+inline constexpr int kMaxBlurRadius = 1024;
+
+// Most taps a gather header is generated for: every header records the exact
+// optimum, whose search grows faster than n^2, so it stops where that is quick.
+inline constexpr int kMaxGatherTaps = 4096;
+
 // Normalised Gaussian weights for taps k = -radius..radius, stored at
 // weights[k + radius]; symmetric, rounded to float, summing to 1 within float
 // rounding. radius 0 is the identity kernel {1} whatever sigma is. Requires
-// 0 <= radius <= 1024 and sigma > 0 and finite (when given); throws
+// 0 <= radius <= kMaxBlurRadius and sigma > 0 and finite (when given); throws
 // std::invalid_argument naming the problem otherwise.
 struct BlurKernel {
     int radius = 0;
