@@ -35,7 +35,7 @@ std::string failure_of(const fs::path& path, std::string_view contents) {
 
 }  // namespace
 
-TEST_CASE("write_file_atomically creates and replaces files", "[codegen][atomic]") {
+TEST_CASE("atomic file: write_file_atomically creates and replaces files", "[codegen][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
     const auto path = dir / "out.glsl";
     write_file_atomically(path, "first\n");
@@ -52,8 +52,9 @@ TEST_CASE("write_file_atomically creates and replaces files", "[codegen][atomic]
     fs::remove_all(dir);
 }
 
-TEST_CASE("write_file_atomically fails with one line naming the path and leaves nothing",
-          "[codegen][atomic]") {
+TEST_CASE(
+    "atomic file: write_file_atomically fails with one line naming the path and leaves nothing",
+    "[codegen][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
 
     SECTION("missing directory") {
@@ -89,7 +90,8 @@ TEST_CASE("write_file_atomically fails with one line naming the path and leaves 
     fs::remove_all(dir);
 }
 
-TEST_CASE("concurrent writers never leave a mixed file or a temporary", "[codegen][atomic]") {
+TEST_CASE("atomic file: concurrent writers never leave a mixed file or a temporary",
+          "[codegen][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
     const auto path = dir / "shared.glsl";
     const std::string a(100000, 'a'), b(70000, 'b');

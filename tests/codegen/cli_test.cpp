@@ -34,7 +34,7 @@ int entries_in(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("header and blur are deterministic and --out writes what stdout shows",
+TEST_CASE("spiralgen: header and blur are deterministic and --out writes what stdout shows",
           "[codegen][cli]") {
     const std::string arguments = GENERATE(as<std::string>{}, "header --pass ao --taps 19",
                                            "header --pass radiosity --taps 64 --tau 5",
@@ -98,7 +98,7 @@ TEST_CASE("bad input: one line on stderr naming the problem, exit status 2, no o
     CHECK(result.out.empty());
 }
 
-TEST_CASE("a failing run leaves no file and does not clobber an existing one",
+TEST_CASE("spiralgen: a failing run leaves no file and does not clobber an existing one",
           "[codegen][cli][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("codegen-cli");
     const auto out = dir / "ao.glsl";
@@ -131,14 +131,14 @@ TEST_CASE("a failing run leaves no file and does not clobber an existing one",
     fs::remove_all(dir);
 }
 
-TEST_CASE("--help works on header and blur", "[codegen][cli]") {
+TEST_CASE("spiralgen: --help works on header and blur", "[codegen][cli]") {
     const std::string command = GENERATE(as<std::string>{}, "header", "blur");
     const auto result = spiralgen(command + " --help");
     CHECK(result.status == 0);
     CHECK(result.out.find("--out") != std::string::npos);
 }
 
-TEST_CASE("a failed write to standard output is an error, not a silent exit 0",
+TEST_CASE("spiralgen: a failed write to standard output is an error, not a silent exit 0",
           "[codegen][cli][errors]") {
     if (!fs::exists("/dev/full")) {
         WARN("no /dev/full on this system; skipped");

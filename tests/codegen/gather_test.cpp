@@ -46,7 +46,8 @@ bool close_to(float value, long double exact, long double alpha) {
 
 }  // namespace
 
-TEST_CASE("macro_prefix upper-cases and joins words with one underscore", "[codegen][gather]") {
+TEST_CASE("gather header: macro_prefix upper-cases and joins words with one underscore",
+          "[codegen][gather]") {
     CHECK(macro_prefix("ao") == "AO");
     CHECK(macro_prefix("radiosity") == "RADIOSITY");
     CHECK(macro_prefix("deep radiosity") == "DEEP_RADIOSITY");
@@ -56,7 +57,8 @@ TEST_CASE("macro_prefix upper-cases and joins words with one underscore", "[code
     CHECK(macro_prefix("pass 2") == "PASS_2");
 }
 
-TEST_CASE("macro_prefix refuses names that cannot become a macro prefix", "[codegen][gather]") {
+TEST_CASE("gather header: macro_prefix refuses names that cannot become a macro prefix",
+          "[codegen][gather]") {
     CHECK_THROWS_AS(macro_prefix(""), std::invalid_argument);
     CHECK_THROWS_AS(macro_prefix("3d"), std::invalid_argument);
     CHECK_THROWS_AS(macro_prefix("!!"), std::invalid_argument);
@@ -69,7 +71,7 @@ TEST_CASE("macro_prefix refuses names that cannot become a macro prefix", "[code
     CHECK(macro_prefix("glow") == "GLOW");  // only the GL_ prefix is reserved
 }
 
-TEST_CASE("shell_quote quotes only when needed", "[codegen]") {
+TEST_CASE("gather header: shell_quote quotes only when needed", "[codegen]") {
     using spiral::codegen::shell_quote;
     CHECK(shell_quote("ao") == "ao");
     CHECK(shell_quote("deep radiosity") == "'deep radiosity'");
@@ -78,7 +80,7 @@ TEST_CASE("shell_quote quotes only when needed", "[codegen]") {
     CHECK(shell_quote("a\\") == "'a\\'");
 }
 
-TEST_CASE("hand-derived taps are exact", "[codegen][gather]") {
+TEST_CASE("gather header: hand-derived taps are exact", "[codegen][gather]") {
     // n = 2, tau = 1: alpha = 1/4, 3/4 at 1/4 and 3/4 of a turn, so the
     // offsets are (0, 1/4) and (0, -3/4); the cosines must be exactly 0.
     auto two = spiral_taps(2, 1);
@@ -104,7 +106,8 @@ TEST_CASE("hand-derived taps are exact", "[codegen][gather]") {
     CHECK(four[3].y == static_cast<float>(-7 * h / 8));
 }
 
-TEST_CASE("taps match the long-double oracle for every n <= 300", "[codegen][gather]") {
+TEST_CASE("gather header: taps match the long-double oracle for every n <= 300",
+          "[codegen][gather]") {
     int compared = 0;
     for (int n = 1; n <= 300; ++n) {
         for (long long tau :
@@ -126,7 +129,8 @@ TEST_CASE("taps match the long-double oracle for every n <= 300", "[codegen][gat
     CHECK(compared > 300000);
 }
 
-TEST_CASE("fractional turns match the long-double oracle", "[codegen][gather][fractional]") {
+TEST_CASE("gather header: fractional turns match the long-double oracle",
+          "[codegen][gather][fractional]") {
     // tau = p / m: the oracle takes the angle 2*pi*(p/m)*alpha in long double.
     const long double pi = 3.141592653589793238462643383279502884L;
     for (int n = 1; n <= 64; ++n)
@@ -159,7 +163,7 @@ TEST_CASE("fractional turns match the long-double oracle", "[codegen][gather][fr
     CHECK_THROWS_AS(spiral_taps(4, 1, 0), std::invalid_argument);
 }
 
-TEST_CASE("the gather header for fractional turns states p/m and its discrepancy",
+TEST_CASE("gather header: the gather header for fractional turns states p/m and its discrepancy",
           "[codegen][gather][fractional]") {
     const std::string text =
         spiral::codegen::make_gather_header("ao", 16, std::nullopt, {"test"}, 8);
@@ -176,7 +180,7 @@ TEST_CASE("the gather header for fractional turns states p/m and its discrepancy
     CHECK(by_hand.find("D(16, 56/8) = 1536/8192") != std::string::npos);
 }
 
-TEST_CASE("the exact angle reduction gives exact symmetries", "[codegen][gather]") {
+TEST_CASE("gather header: the exact angle reduction gives exact symmetries", "[codegen][gather]") {
     for (int n : {1, 2, 3, 7, 11, 19, 64, 255, 1000}) {
         for (int tau : {1, 2, 3, n / 3 + 1, n}) {
             const auto base = spiral_taps(n, tau);
@@ -199,7 +203,7 @@ TEST_CASE("the exact angle reduction gives exact symmetries", "[codegen][gather]
     }
 }
 
-TEST_CASE("spiral_taps refuses n < 1 and tau < 1", "[codegen][gather]") {
+TEST_CASE("gather header: spiral_taps refuses n < 1 and tau < 1", "[codegen][gather]") {
     CHECK_THROWS_AS(spiral_taps(0, 1), std::invalid_argument);
     CHECK_THROWS_AS(spiral_taps(3, 0), std::invalid_argument);
     CHECK_THROWS_AS(spiral_taps(3, -2), std::invalid_argument);
@@ -225,7 +229,8 @@ const spiral::codegen::Provenance kProvenance{"test"};
 
 }  // namespace
 
-TEST_CASE("the gather header states whether tau is the optimum", "[codegen][gather]") {
+TEST_CASE("gather header: the gather header states whether tau is the optimum",
+          "[codegen][gather]") {
     using spiral::codegen::format_gather_header;
     // K values are made up (n = 5, 4n^2 = 100): the header must report them as given.
     SECTION("the optimum itself") {
@@ -265,7 +270,8 @@ TEST_CASE("the gather header states whether tau is the optimum", "[codegen][gath
     }
 }
 
-TEST_CASE("every printed offset and alpha reads back as the same float", "[codegen][gather]") {
+TEST_CASE("gather header: every printed offset and alpha reads back as the same float",
+          "[codegen][gather]") {
     // 255 taps with an awkward tau, and 1000 taps where tiny offsets print
     // with an exponent: parse each "vec2(x, y),  // i" and "a,  // i" line.
     for (auto [n, tau] : {std::pair{255, 97}, std::pair{1000, 501}}) {
@@ -292,7 +298,8 @@ TEST_CASE("every printed offset and alpha reads back as the same float", "[codeg
     }
 }
 
-TEST_CASE("make_gather_header uses the optimizer's optimum and K", "[codegen][gather]") {
+TEST_CASE("gather header: make_gather_header uses the optimizer's optimum and K",
+          "[codegen][gather]") {
     const auto optimum = spiral::search(11);
     const auto text = spiral::codegen::make_gather_header("ao", 11, std::nullopt, kProvenance);
     CHECK(text.find("#define AO_NUM_TAPS 11\n") != std::string::npos);

@@ -14,7 +14,8 @@ static_assert(kSpiralTurns.size() == kSpiralTurnsMaxTaps + 1);
 static_assert(kSpiralTurns[0] == 0, "entry 0 is unused");
 static_assert(kSpiralTurns[1] == 1, "one tap: the only tau is 1");
 
-TEST_CASE("the generated C++ table equals search() for every tabulated n", "[codegen][table]") {
+TEST_CASE("generated table: the generated C++ table equals search() for every tabulated n",
+          "[codegen][table]") {
     for (int n = 1; n < kSpiralTurnsMinTaps; ++n)
         CHECK(kSpiralTurns[static_cast<std::size_t>(n)] == 0);
     for (int n = kSpiralTurnsMinTaps; n <= kSpiralTurnsMaxTaps; ++n) {

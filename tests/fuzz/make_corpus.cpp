@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-using namespace deepgi::testing;
+using namespace deepgi::test;
 
 namespace {
 

@@ -30,13 +30,14 @@ void check_against_oracle(int n, int tau) {
 
 }  // namespace
 
-TEST_CASE("fast evaluator equals the brute force for every tau and n <= 40",
+TEST_CASE("discrepancy: fast evaluator equals the brute force for every tau and n <= 40",
           "[discrepancy][oracle]") {
     const int n = GENERATE(range(1, 41));
     for (int tau = 1; tau <= n; ++tau) check_against_oracle(n, tau);
 }
 
-TEST_CASE("fast evaluator equals the brute force on sampled larger n", "[discrepancy][oracle]") {
+TEST_CASE("discrepancy: fast evaluator equals the brute force on sampled larger n",
+          "[discrepancy][oracle]") {
     // Primes, powers of two, Fibonacci numbers and highly composite n, each
     // with a near-optimal tau, a poor one and a shared-angle one where possible.
     const auto [n, tau] = GENERATE(table<int, int>({
@@ -60,7 +61,7 @@ TEST_CASE("fast evaluator equals the brute force on sampled larger n", "[discrep
     check_against_oracle(n, tau);
 }
 
-TEST_CASE("hand-derived small cases", "[discrepancy][exact]") {
+TEST_CASE("discrepancy: hand-derived small cases", "[discrepancy][exact]") {
     SECTION("n = 1: the lone tap is a closed sector of zero area holding every tap") {
         // Tap at alpha = 1/2, angle 1/2 turn. The degenerate closed sector
         // through it has count/n = 1 and area 0, so local = 1, and local can
@@ -115,7 +116,7 @@ TEST_CASE("invariances: mirror and period", "[discrepancy][property]") {
     }
 }
 
-TEST_CASE("hard cases", "[discrepancy][hard]") {
+TEST_CASE("discrepancy: hard cases", "[discrepancy][hard]") {
     SECTION("tau = n puts every tap on one ray: D = 1") {
         // The closed sector of zero arc along the ray holds all n taps.
         for (int n : {1, 2, 7, 64, 4096}) {
@@ -160,7 +161,7 @@ TEST_CASE("hard cases", "[discrepancy][hard]") {
     }
 }
 
-TEST_CASE("invalid arguments are rejected", "[discrepancy][errors]") {
+TEST_CASE("discrepancy: invalid arguments are rejected", "[discrepancy][errors]") {
     CHECK_THROWS_AS(discrepancy(0, 1), std::invalid_argument);
     CHECK_THROWS_AS(discrepancy(spiral::kMaxTaps + 1, 1), std::invalid_argument);
     CHECK_THROWS_AS(discrepancy(5, 0), std::invalid_argument);

@@ -26,7 +26,7 @@ spiral::SearchResult minimise_by_brute_force(int n) {
 
 }  // namespace
 
-TEST_CASE("search finds the brute-force minimum and every tie", "[search][oracle]") {
+TEST_CASE("search: search finds the brute-force minimum and every tie", "[search][oracle]") {
     const int n = GENERATE(range(1, 33));
     const auto expected = minimise_by_brute_force(n);
     const auto found = spiral::search(n);
@@ -37,7 +37,7 @@ TEST_CASE("search finds the brute-force minimum and every tie", "[search][oracle
     CHECK(found.ties == expected.ties);
 }
 
-TEST_CASE("search agrees with an exhaustive fast scan for larger n", "[search]") {
+TEST_CASE("search: search agrees with an exhaustive fast scan for larger n", "[search]") {
     // Branch and bound may stop a candidate early; a full evaluation of every
     // tau must find the same minimum and the same ties.
     const int n = GENERATE(64, 89, 99, 144, 233, 256, 300);
@@ -58,7 +58,7 @@ TEST_CASE("search agrees with an exhaustive fast scan for larger n", "[search]")
     CHECK(found.tau == ties.front());
 }
 
-TEST_CASE("ties come in mirror pairs", "[search][property]") {
+TEST_CASE("search: ties come in mirror pairs", "[search][property]") {
     for (int n = 2; n <= 99; ++n) {
         const auto r = spiral::search(n);
         INFO("n = " << n);
@@ -68,7 +68,7 @@ TEST_CASE("ties come in mirror pairs", "[search][property]") {
     }
 }
 
-TEST_CASE("results do not depend on the thread count", "[search][threads]") {
+TEST_CASE("search: results do not depend on the thread count", "[search][threads]") {
     const auto one = spiral::search_range(1, 160, spiral::SearchOptions{1});
     const auto three = spiral::search_range(1, 160, spiral::SearchOptions{3});
     REQUIRE(one.size() == three.size());
@@ -87,7 +87,7 @@ TEST_CASE("results do not depend on the thread count", "[search][threads]") {
     }
 }
 
-TEST_CASE("search_range reports progress once per n", "[search]") {
+TEST_CASE("search: search_range reports progress once per n", "[search]") {
     int calls = 0, last_done = 0;
     const auto results =
         spiral::search_range(5, 24, spiral::SearchOptions{2}, [&](int done, int total) {
@@ -102,7 +102,7 @@ TEST_CASE("search_range reports progress once per n", "[search]") {
     CHECK(results.back().n == 24);
 }
 
-TEST_CASE("search rejects invalid ranges", "[search][errors]") {
+TEST_CASE("search: search rejects invalid ranges", "[search][errors]") {
     CHECK_THROWS_AS(spiral::search(0), std::invalid_argument);
     CHECK_THROWS_AS(spiral::search(spiral::kMaxTaps + 1), std::invalid_argument);
     CHECK_THROWS_AS(spiral::search_range(0, 5), std::invalid_argument);

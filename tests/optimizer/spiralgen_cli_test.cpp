@@ -23,7 +23,7 @@ spiral::test::ProcessResult spiralgen(const std::string& arguments) {
 
 }  // namespace
 
-TEST_CASE("table output is identical across runs and thread counts", "[cli][table]") {
+TEST_CASE("spiralgen: table output is identical across runs and thread counts", "[cli][table]") {
     const auto serial = spiralgen("table --max-n 150 --format json --jobs 1");
     const auto parallel = spiralgen("table --max-n 150 --format json --jobs 3");
     const auto again = spiralgen("table --max-n 150 --format json");
@@ -34,7 +34,7 @@ TEST_CASE("table output is identical across runs and thread counts", "[cli][tabl
     CHECK(count_lines(serial.out) >= 150);
 }
 
-TEST_CASE("table json carries the search's exact values", "[cli][table]") {
+TEST_CASE("spiralgen: table json carries the search's exact values", "[cli][table]") {
     const auto result = spiralgen("table --min-n 12 --max-n 12 --format json");
     REQUIRE(result.status == 0);
     const auto expected = spiral::search(12);
@@ -50,7 +50,7 @@ TEST_CASE("table json carries the search's exact values", "[cli][table]") {
     CHECK(result.out.find(object) != std::string::npos);
 }
 
-TEST_CASE("table --denominator searches fractional turns", "[cli][table][fractional]") {
+TEST_CASE("spiralgen: table --denominator searches fractional turns", "[cli][table][fractional]") {
     const auto result = spiralgen("table --min-n 16 --max-n 16 --denominator 8 --format json");
     REQUIRE(result.status == 0);
     // Confirmed by the brute force in fractional_test.cpp.
@@ -65,7 +65,7 @@ TEST_CASE("table --denominator searches fractional turns", "[cli][table][fractio
           spiralgen("table --max-n 30 --format cpp").out);
 }
 
-TEST_CASE("discrepancy --turns takes real turns and the golden angle",
+TEST_CASE("spiralgen: discrepancy --turns takes real turns and the golden angle",
           "[cli][discrepancy][fractional]") {
     // A decimal that is a short fraction is evaluated exactly: 6.125 = 49/8.
     const auto exact = spiralgen("discrepancy --n 16 --turns 6.125");
@@ -89,7 +89,7 @@ TEST_CASE("discrepancy --turns takes real turns and the golden angle",
     CHECK(std::abs(value - nearby) > 0);  // a different rational, not the same number
 }
 
-TEST_CASE("a bad --denominator leaves no file", "[cli][errors][fractional]") {
+TEST_CASE("spiralgen: a bad --denominator leaves no file", "[cli][errors][fractional]") {
     const auto path = std::filesystem::temp_directory_path() / "spiralgen_denominator_test.md";
     std::filesystem::remove(path);
     const auto result = spiralgen("table --max-n 8 --denominator 0 --out '" + path.string() + "'");
@@ -102,7 +102,8 @@ TEST_CASE("a bad --denominator leaves no file", "[cli][errors][fractional]") {
     CHECK(overflow.err.find("67110912") != std::string::npos);
 }
 
-TEST_CASE("discrepancy reports the exact fraction and the worst sector", "[cli][discrepancy]") {
+TEST_CASE("spiralgen: discrepancy reports the exact fraction and the worst sector",
+          "[cli][discrepancy]") {
     const auto d = spiral::discrepancy(11, 3);
     const auto text = spiralgen("discrepancy --n 11 --tau 3");
     REQUIRE(text.status == 0);
@@ -116,7 +117,7 @@ TEST_CASE("discrepancy reports the exact fraction and the worst sector", "[cli][
     CHECK(json.out.find("\"count\":" + std::to_string(d.worst.count)) != std::string::npos);
 }
 
-TEST_CASE("bad input gives one line on stderr and exit status 2", "[cli][errors]") {
+TEST_CASE("spiralgen: bad input gives one line on stderr and exit status 2", "[cli][errors]") {
     const std::string arguments = GENERATE(
         as<std::string>{}, "discrepancy --n abc --tau 3", "discrepancy --n 0 --tau 3",
         "discrepancy --n 70000 --tau 3", "discrepancy --n 11 --tau 0",
@@ -139,14 +140,15 @@ TEST_CASE("bad input gives one line on stderr and exit status 2", "[cli][errors]
     CHECK(result.out.empty());
 }
 
-TEST_CASE("--help works on every subcommand", "[cli]") {
+TEST_CASE("spiralgen: --help works on every subcommand", "[cli]") {
     const std::string command = GENERATE(as<std::string>{}, "table", "discrepancy");
     const auto result = spiralgen(command + " --help");
     CHECK(result.status == 0);
     CHECK(result.out.find("--format") != std::string::npos);
 }
 
-TEST_CASE("--out is written atomically and a failing run leaves no file", "[cli][atomic]") {
+TEST_CASE("spiralgen: --out is written atomically and a failing run leaves no file",
+          "[cli][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("spiralgen-cli");
     const auto out = dir / "table.md";
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace deepgi::testing {
+namespace deepgi::test {
 
 inline std::string base64(const std::vector<std::uint8_t>& bytes) {
     static const char alphabet[] =
@@ -119,4 +119,4 @@ inline std::string image_members(const std::vector<std::vector<std::uint8_t>>& p
         images, textures);
 }
 
-}  // namespace deepgi::testing
+}  // namespace deepgi::test

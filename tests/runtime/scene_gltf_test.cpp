@@ -16,7 +16,7 @@
 namespace fs = std::filesystem;
 using deepgi::InputError;
 using deepgi::SceneLimits;
-using namespace deepgi::testing;
+using namespace deepgi::test;
 
 namespace {
 
