@@ -25,12 +25,12 @@ std::uint64_t estimate_frame_bytes(const RenderSettings& settings) {
 
 void check_frame_limits(const RenderSettings& settings, std::uint64_t max_bytes) {
     const FrameLayout layout = frame_layout(settings);
-    if (layout.internal_width > max_internal_side || layout.internal_height > max_internal_side) {
+    if (layout.internal_width > limits::max_internal_side || layout.internal_height > limits::max_internal_side) {
         throw InputError(fmt::format(
             "--size {}x{} with --guard-band {} needs internal buffers of {}x{}, above the GL "
             "limit of {} per side (use a smaller size or guard band)",
             settings.width, settings.height, settings.guard_band_fraction, layout.internal_width,
-            layout.internal_height, max_internal_side));
+            layout.internal_height, limits::max_internal_side));
     }
     const std::uint64_t bytes = estimate_frame_bytes(settings);
     if (bytes > max_bytes) {

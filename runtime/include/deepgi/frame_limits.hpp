@@ -8,16 +8,13 @@
 
 namespace deepgi {
 
-// GL_MAX_TEXTURE_SIZE guaranteed by every implementation we target.
-constexpr int max_internal_side = 16384;
-
 // Bytes of GPU memory (system memory under llvmpipe) the frame's render
 // targets take: every internal buffer, the viewport-sized ones and the
 // shadow map. Follows the formats the passes allocate (passes/*.cpp).
 std::uint64_t estimate_frame_bytes(const RenderSettings& settings);
 
 // Throws InputError when the internal size (viewport plus guard band) is
-// above max_internal_side per side, or the estimate above `max_bytes`; the
+// above limits::max_internal_side per side, or the estimate above `max_bytes`; the
 // messages name the option that changes each (--size, --guard-band,
 // --max-gpu-memory).
 void check_frame_limits(const RenderSettings& settings, std::uint64_t max_bytes);

@@ -89,6 +89,9 @@ AoMethod parse_ao_method(std::string_view option, std::string_view text);
 // sliders show the same ranges.
 namespace limits {
 inline constexpr int max_image_side = 16384;
+// Viewport plus guard band: the GL_MAX_TEXTURE_SIZE every implementation we
+// target guarantees (checked by check_frame_limits in frame_limits.hpp).
+inline constexpr int max_internal_side = 16384;
 inline constexpr int min_shadow_map_size = 16;
 inline constexpr int max_shadow_map_size = 8192;
 inline constexpr float max_guard_band_fraction = 1.0f;
