@@ -2,6 +2,7 @@
 // against the exact optimizer where rounding cannot matter, so that the
 // differences the program reports come from rounding and not from a different
 // sector family.
+#include <algorithm>
 #include <numeric>
 
 #include <catch2/catch.hpp>
@@ -45,5 +46,19 @@ TEST_CASE("float discrepancy: the double search agrees with the exact search on 
         INFO("n = " << n);
         CHECK(pick.tau == exact.tau);
         CHECK(pick.value == Approx(exact.value()).margin(1e-12));
+    }
+}
+
+TEST_CASE("float discrepancy: where the double search differs it picks another exact minimiser",
+          "[optimizer]") {
+    // n = 7, 14, 15 are the first n where rounding ranks a later tie first
+    // (docs/optimizer.md); the choice must still be one of the exact ties.
+    for (int n : {7, 14, 15}) {
+        const spiral::SearchResult exact = spiral::search(n);
+        const spiral_float::Pick pick = spiral_float::search(n);
+        INFO("n = " << n << ", exact tau " << exact.tau << ", double tau " << pick.tau);
+        CHECK(pick.tau != exact.tau);
+        CHECK(std::find(exact.ties.begin(), exact.ties.end(), pick.tau) != exact.ties.end());
+        CHECK(spiral::discrepancy_scaled(n, pick.tau) == exact.scaled);
     }
 }
