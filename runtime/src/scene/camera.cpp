@@ -13,8 +13,13 @@ glm::vec3 camera_forward(const Camera& camera) {
 }
 
 glm::mat4 camera_view_matrix(const Camera& camera) {
-    return glm::lookAt(camera.position, camera.position + camera_forward(camera),
-                       glm::vec3(0, 1, 0));
+    // Orient at the origin, then translate. lookAt(p, p + forward) would round
+    // p + forward to the spacing of p's floats and take the direction back out
+    // of that difference: a camera 1 km from the origin then looks about 1e-4
+    // rad off, which moves depths far more than float rounding otherwise does.
+    const glm::mat4 rotation =
+        glm::lookAt(glm::vec3(0.0f), camera_forward(camera), glm::vec3(0, 1, 0));
+    return glm::translate(rotation, -camera.position);
 }
 
 Camera camera_on_path(const CameraPath& path, int frame) {

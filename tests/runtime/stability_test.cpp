@@ -1,0 +1,247 @@
+// Numerical hard cases for the deep G-buffer and deep SAO: the same scene at
+// very different scales, far geometry with a tiny near plane, grazing views of
+// an open plane, depth discontinuities inside the guard band, and degenerate
+// image sizes. docs/deep-sao.md, "Numerical stability".
+#include "sao_test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace deepgi::test {
+namespace {
+
+struct Frame {
+    FloatImage depth;  // depth pyramid level 0: > 0 where layer 0 hit a surface
+    FloatImage raw;
+    FloatImage blurred;
+};
+
+Frame render(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
+    Renderer renderer(scene, settings, loader);
+    renderer.render(scene.default_camera);
+    return {renderer.read_pass_output("depth_pyramid-level0"), renderer.read_pass_output("ao-raw"),
+            renderer.read_pass_output("ao-blurred")};
+}
+
+void check_valid_visibility(const Frame& frame) {
+    for (const FloatImage* image : {&frame.raw, &frame.blurred}) {
+        CHECK(all_finite(*image));
+        CHECK(*std::min_element(image->pixels.begin(), image->pixels.end()) >= 0.0f);
+        CHECK(*std::max_element(image->pixels.begin(), image->pixels.end()) <= 1.0f);
+    }
+    CHECK(all_finite(frame.depth));
+}
+
+// Everything with a length scaled by s: geometry, camera position and near
+// plane, and every length setting. Angles and pixel measures stay.
+Scene scaled_scene(Scene scene, float s) {
+    for (Vertex& v : scene.vertices) v.position *= s;
+    scene.default_camera.position *= s;
+    scene.default_camera.near_plane *= s;
+    scene.camera_path.keys = {scene.default_camera};
+    scene.bounds = compute_bounds(scene.vertices);
+    return scene;
+}
+
+RenderSettings scaled_settings(RenderSettings settings, float s) {
+    settings.ao.radius *= s;
+    settings.ao.bias *= s;
+    settings.min_separation *= s;
+    return settings;
+}
+
+// Lowest visibility over the visible (non-guard) pixels that hit a surface.
+float lowest_on_surfaces(const Frame& frame, int guard, int* surface_pixels) {
+    float lowest = 1.0f;
+    *surface_pixels = 0;
+    for (int y = guard; y < frame.raw.height - guard; ++y) {
+        for (int x = guard; x < frame.raw.width - guard; ++x) {
+            if (!(frame.depth.at(x, y, 0) > 0.0f)) continue;
+            ++*surface_pixels;
+            lowest = std::min({lowest, frame.raw.at(x, y), frame.blurred.at(x, y)});
+        }
+    }
+    return lowest;
+}
+
+TEST_CASE("stability: a scene scaled by 1e-3 and by 1e3 with matching lengths gives the same AV",
+          "[stability]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (const char* name : {"ref-crease", "ref-slab"}) {
+        const Scene base = make_reference_scene(name);
+        const RenderSettings settings = small_settings(160, 90);
+        const Frame unit = render(base, settings, loader);
+        int occluded = 0;
+        for (float v : unit.raw.pixels) occluded += v < 0.9f;
+        CHECK(occluded > int(unit.raw.pixels.size() / 100));  // not a comparison of ones
+        for (float s : {1e-3f, 1e3f, 1.0f / 1024.0f, 1024.0f}) {
+            const Frame scaled =
+                render(scaled_scene(base, s), scaled_settings(settings, s), loader);
+            check_valid_visibility(scaled);
+            REQUIRE(scaled.raw.pixels.size() == unit.raw.pixels.size());
+            float worst_raw = 0.0f, worst_blurred = 0.0f;
+            double sum = 0.0;
+            std::size_t beyond = 0;
+            for (std::size_t i = 0; i < unit.raw.pixels.size(); ++i) {
+                const float e = std::abs(scaled.raw.pixels[i] - unit.raw.pixels[i]);
+                worst_raw = std::max(worst_raw, e);
+                beyond += e > 1e-3f;
+                sum += e;
+                worst_blurred = std::max(
+                    worst_blurred, std::abs(scaled.blurred.pixels[i] - unit.blurred.pixels[i]));
+            }
+            INFO(name << " scaled by " << s << ": worst raw " << worst_raw << ", worst blurred "
+                      << worst_blurred << ", mean " << sum / double(unit.raw.pixels.size())
+                      << ", pixels beyond 1e-3: " << beyond);
+            CHECK(worst_raw <= 1e-3f);
+            CHECK(worst_blurred <= 1e-3f);
+            // A power of two scales every float exactly, so nothing may change
+            // unless some step mixes in an unscaled length.
+            if (s == 1024.0f || s == 1.0f / 1024.0f) CHECK(worst_raw == 0.0f);
+        }
+    }
+}
+
+TEST_CASE("stability: an open floor 1 km away seen through a 1 mm near plane stays unoccluded",
+          "[stability]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    Scene scene;
+    scene.name = "far-floor";
+    SceneBuilder builder;
+    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+    const float l = 1e4f;
+    builder.add_quad({-l, 0, l}, {l, 0, l}, {l, 0, -l}, {-l, 0, -l}, {0, 1, 0}, white);
+    builder.finish(scene);
+    for (float pitch : {-90.0f, -45.0f}) {
+        // The view's centre ray meets the floor 1 km away.
+        scene.default_camera = camera_at_origin(60.0f, 1e-3f);
+        scene.default_camera.pitch = glm::radians(pitch);
+        scene.default_camera.position.y = 1000.0f * std::sin(glm::radians(-pitch));
+        scene.camera_path.keys = {scene.default_camera};
+        for (float radius : {0.5f, 50.0f}) {
+            RenderSettings settings = small_settings(160, 90);
+            settings.ao.radius = radius;
+            const Frame frame = render(scene, settings, loader);
+            check_valid_visibility(frame);
+            int surface = 0;
+            const float lowest = lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+            INFO("pitch " << pitch << ", radius " << radius << ": lowest AV " << lowest << " over "
+                          << surface << " floor pixels");
+            CHECK(surface > 160 * 90 / 2);
+            CHECK(lowest >= 0.99f);
+        }
+    }
+}
+
+TEST_CASE("stability: an open plane seen at grazing angles keeps AV >= 0.99", "[stability]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    Scene scene;
+    scene.name = "open-floor";
+    SceneBuilder builder;
+    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+    const float l = 1e4f;
+    builder.add_quad({-l, -1, l}, {l, -1, l}, {l, -1, -l}, {-l, -1, -l}, {0, 1, 0}, white);
+    builder.finish(scene);
+    for (float pitch : {-20.0f, -5.0f, -1.0f, -0.2f}) {
+        scene.default_camera = camera_at_origin();
+        scene.default_camera.pitch = glm::radians(pitch);
+        scene.camera_path.keys = {scene.default_camera};
+        for (int layers : {1, 2}) {
+            RenderSettings settings = small_settings(160, 90);
+            settings.ao.layers = layers;
+            const Frame frame = render(scene, settings, loader);
+            check_valid_visibility(frame);
+            int surface = 0;
+            const float lowest = lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+            INFO("pitch " << pitch << ", " << layers << " layer(s): lowest AV " << lowest
+                          << " over " << surface << " floor pixels");
+            CHECK(surface > 0);
+            CHECK(lowest >= 0.99f);
+        }
+    }
+}
+
+TEST_CASE("stability: depth discontinuities inside the guard band give finite AV in [0, 1]",
+          "[stability]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const RenderSettings base = small_settings(160, 90);
+    const FrameLayout layout = frame_layout(base);
+    REQUIRE(layout.guard > 2);
+    // A near wall whose edge crosses the guard band of the left side, in front
+    // of a far one: depth jumps from 0.3 m to 50 m between neighbouring pixels
+    // in the guard band, right where the visible frame begins, and next to it.
+    const Camera camera = camera_at_origin();
+    const float tan_half = std::tan(camera.vertical_fov * 0.5f);
+    const float aspect = float(base.width) / float(base.height);
+    for (int edge_px : {-layout.guard / 2, 0, 1}) {
+        // The x (in visible-frame pixels from its left edge) where the near wall ends.
+        const float ndc = 2.0f * (float(edge_px) + 0.5f) / float(base.width) - 1.0f;
+        const float near_z = 0.3f, far_z = 50.0f;
+        const float edge_x = ndc * tan_half * aspect * near_z;
+        Scene scene;
+        scene.name = "guard-edge";
+        SceneBuilder builder;
+        const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+        builder.add_quad({-100, -100, -far_z}, {100, -100, -far_z}, {100, 100, -far_z},
+                         {-100, 100, -far_z}, {0, 0, 1}, white);
+        builder.add_quad({-10, -10, -near_z}, {edge_x, -10, -near_z}, {edge_x, 10, -near_z},
+                         {-10, 10, -near_z}, {0, 0, 1}, white);
+        builder.finish(scene);
+        scene.default_camera = camera;
+        scene.camera_path.keys = {camera};
+        for (int layers : {1, 2}) {
+            for (float radius : {0.05f, 0.5f, 20.0f}) {
+                RenderSettings settings = base;
+                settings.ao.layers = layers;
+                settings.ao.radius = radius;
+                const Frame frame = render(scene, settings, loader);
+                INFO("edge at visible pixel " << edge_px << ", " << layers << " layer(s), radius "
+                                              << radius);
+                check_valid_visibility(frame);
+                // The discontinuity is really there, in the row's guard band.
+                const int y = frame.depth.height / 2;
+                const float left = frame.depth.at(0, y, 0);
+                const float right = frame.depth.at(frame.depth.width - 1, y, 0);
+                CHECK(left > 0.0f);
+                CHECK(right > 0.0f);
+                CHECK(left != right);
+            }
+        }
+    }
+}
+
+TEST_CASE("stability: 1x1 and 3x2 images render every output finite", "[stability]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (auto [width, height] : {std::pair{1, 1}, std::pair{3, 2}}) {
+        for (const char* name : {"ref-slab", "cornell"}) {
+            const Scene scene = make_builtin_scene(name);
+            RenderSettings settings = small_settings(width, height);
+            Renderer renderer(scene, settings, loader);
+            renderer.render(scene.default_camera);
+            int checked = 0;
+            for (const std::string& output : renderer.pass_output_names()) {
+                const FloatImage image = renderer.read_pass_output(output);
+                INFO(name << " at " << width << "x" << height << ", output " << output);
+                CHECK(image.width >= 1);
+                CHECK(image.height >= 1);
+                CHECK(all_finite(image));
+                ++checked;
+            }
+            CHECK(checked >= 4);
+            const FloatImage raw = renderer.read_pass_output("ao-raw");
+            CHECK(*std::min_element(raw.pixels.begin(), raw.pixels.end()) >= 0.0f);
+            CHECK(*std::max_element(raw.pixels.begin(), raw.pixels.end()) <= 1.0f);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace deepgi::test
