@@ -34,6 +34,9 @@ layout(location = DEEPGI_UNIFORM_LAYER) uniform int layer;
 // conserving), z: per-sample contribution clamp, w: rho_prop in [0, 1]
 layout(location = DEEPGI_UNIFORM_RADIOSITY_PARAMETERS) uniform vec4 radiosity_parameters;
 layout(location = DEEPGI_UNIFORM_RADIOSITY_LAYERS) uniform int gather_layers;  // 1 or 2
+// Added to every pixel's rotation, different each frame (golden-ratio steps),
+// so the temporal filter averages different patterns instead of one.
+layout(location = DEEPGI_UNIFORM_RADIOSITY_ANGLE) uniform float frame_angle;
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
@@ -64,7 +67,8 @@ void main() {
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, layer), 0).xy);
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
-  mat2 rotation = pixel_rotation(uvec2(pixel));
+  float phi = pixel_rotation_angle(uvec2(pixel)) + frame_angle;
+  mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);
 
   vec3 sum = vec3(0.0);

@@ -197,6 +197,9 @@ int main(int argc, char** argv) {
                    "Deep radiosity: share of last frame's indirect light in the next gather, "
                    "[0, 1] (multiple bounces)")
         ->capture_default_str();
+    app.add_option("--radiosity-alpha", options.radiosity.alpha,
+                   "Deep radiosity: temporal filter's history weight in [0, 1) (0: raw gather)")
+        ->capture_default_str();
     app.add_option("--radiosity-layers", options.radiosity.layers,
                    fmt::format("Deep radiosity: G-buffer layers gathered, 1 to {}",
                                deepgi::limits::max_radiosity_layers))

@@ -121,6 +121,7 @@ struct RadiositySettings {
     float boost = 0.0f;       // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
     float tap_clamp = 16.0f;  // largest contribution B(Y) * cos of one sample, per channel
     float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
+    float alpha = 0.85f;      // temporal filter: weight of the reprojected history (0: raw gather)
     int layers = 2;           // 1: layer 0 only, 2: both deep G-buffer layers
 };
 
