@@ -1,16 +1,39 @@
 #version 450 core
-// Outgoing radiance of layer 0: direct + emissive + a constant fill. The deep
-// SAO and radiosity issues replace the constant fill with albedo * E * AV.
+// Outgoing radiance of layer 0 (design.md 3, step 8):
+//
+//   L = direct + albedo/pi * (E * c + env(n) * (1 - c)) * AV + emissive
+//
+// E is the blurred deep radiosity irradiance and c its confidence (the
+// fraction of taps used). Where few taps found a surface (open sky, the
+// buffer's edge) the environment fills in: an analytic sky for scenes with a
+// sky (background not black) and the constant ambient otherwise. Both are
+// irradiance, so the Lambertian 1/pi turns them into radiance.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
 layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
+layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
 layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
 layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
 layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
 layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ambient_visibility;  // blurred deep SAO
+layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
 
 layout(location = 0) out vec3 out_radiance;
+
+const float pi = 3.14159265;
+
+// Irradiance from the environment onto a surface with world-space normal n.
+// Constant scenes: pi * ambient (a uniform sky of radiance `ambient`). Sky
+// scenes: a dome of the background colour above and a dim ground below,
+// blended by how far the normal points up.
+vec3 environment_irradiance(vec3 world_normal) {
+  if (dot(frame.background.rgb, vec3(1.0)) <= 0.0) return pi * frame.ambient.rgb;
+  float up = 0.5 + 0.5 * world_normal.y;
+  vec3 sky = frame.ambient.rgb + 0.25 * frame.background.rgb;
+  vec3 ground = frame.ambient.rgb * 0.5;
+  return pi * mix(ground, sky, up);
+}
 
 void main() {
   ivec3 texel = ivec3(gl_FragCoord.xy, 0);
@@ -19,6 +42,11 @@ void main() {
     return;
   }
   vec3 albedo = srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
+  vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
+  vec3 world_normal = normalize(transpose(mat3(frame.view)) * normal);
+  vec4 gathered = texelFetch(radiosity, texel.xy, 0);
+  float confidence = clamp(gathered.a, 0.0, 1.0);
+  vec3 irradiance = gathered.rgb + environment_irradiance(world_normal) * (1.0 - confidence);
   out_radiance = texelFetch(direct_light, texel, 0).rgb + texelFetch(gbuffer_emissive, texel, 0).rgb +
-                 frame.ambient.rgb * albedo * texelFetch(ambient_visibility, texel.xy, 0).r;
+                 albedo / pi * irradiance * texelFetch(ambient_visibility, texel.xy, 0).r;
 }

@@ -13,18 +13,30 @@ layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth
 layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
 layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D ao_raw;
 layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ao_blurred;
+layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity_blurred;
+layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER0) uniform sampler2D radiosity_layer0;
+layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER1) uniform sampler2D radiosity_layer1;
 
 layout(location = 0) out vec4 out_colour;
 
 vec3 view_colour(ivec2 pixel, int view) {
   int layer = (view == DEEPGI_VIEW_NORMAL_LAYER1 || view == DEEPGI_VIEW_ALBEDO_LAYER1 ||
-               view == DEEPGI_VIEW_DEPTH_LAYER1 || view == DEEPGI_VIEW_DIRECT_LAYER1) ? 1 : 0;
+               view == DEEPGI_VIEW_DEPTH_LAYER1 || view == DEEPGI_VIEW_DIRECT_LAYER1 ||
+               view == DEEPGI_VIEW_RADIOSITY_LAYER1) ? 1 : 0;
   ivec3 texel = ivec3(pixel, layer);
   float stored_depth = texelFetch(gbuffer_depth, texel, 0).r;
   if (stored_depth <= 0.0) return vec3(0.0);
   // Visibility is shown as it is (1 = unoccluded white), not tonemapped.
   if (view == DEEPGI_VIEW_AO_RAW) return vec3(texelFetch(ao_raw, pixel, 0).r);
   if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(texelFetch(ao_blurred, pixel, 0).r);
+  // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.
+  if (view == DEEPGI_VIEW_RADIOSITY_LAYER0)
+    return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (frame.exposure * 0.31830989));
+  if (view == DEEPGI_VIEW_RADIOSITY_LAYER1)
+    return filmic_tonemap(texelFetch(radiosity_layer1, pixel, 0).rgb * (frame.exposure * 0.31830989));
+  if (view == DEEPGI_VIEW_RADIOSITY_BLURRED)
+    return filmic_tonemap(texelFetch(radiosity_blurred, pixel, 0).rgb * (frame.exposure * 0.31830989));
+  if (view == DEEPGI_VIEW_RADIOSITY_CONFIDENCE) return vec3(texelFetch(radiosity_layer0, pixel, 0).a);
   if (view == DEEPGI_VIEW_NORMAL_LAYER0 || view == DEEPGI_VIEW_NORMAL_LAYER1)
     return decode_normal(texelFetch(gbuffer_normal, texel, 0).xy) * 0.5 + 0.5;
   if (view == DEEPGI_VIEW_ALBEDO_LAYER0 || view == DEEPGI_VIEW_ALBEDO_LAYER1)

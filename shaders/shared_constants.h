@@ -27,6 +27,12 @@
 #define DEEPGI_UNIT_AO 11             // ambient visibility (R), raw or blurred
 #define DEEPGI_UNIT_BLUR_SOURCE 12    // whatever the bilateral blur is smoothing
 #define DEEPGI_UNIT_AO_RAW 13         // debug view only
+#define DEEPGI_UNIT_RADIOSITY 14      // RGBA16F: E (rgb) and confidence (a) of layer 0, blurred
+#define DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0 15  // last frame's E of layer 0 (bounces)
+#define DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1 16  // last frame's E of layer 1 (bounces)
+#define DEEPGI_UNIT_RADIOSITY_RAW_LAYER0 17       // this frame's E of layer 0 (debug view)
+#define DEEPGI_UNIT_RADIOSITY_RAW_LAYER1 18       // this frame's E of layer 1 (debug view)
+#define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY 19      // last frame's depth + normal key (temporal filter)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -55,6 +61,11 @@
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
 #define DEEPGI_UNIFORM_SAO_METHOD 25      // int: DEEPGI_AO_METHOD_*
 #define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
+#define DEEPGI_UNIFORM_RADIOSITY_PARAMETERS 26  // vec4: radius (m), boost amount, tap clamp, rho_prop
+#define DEEPGI_UNIFORM_RADIOSITY_LAYERS 27      // int: 1 or 2 layers gathered
+#define DEEPGI_UNIFORM_RADIOSITY_ANGLE 28       // float: this frame's extra rotation of the taps (rad)
+#define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
+#define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

@@ -31,5 +31,11 @@
 
 #define DEEPGI_VIEW_AO_RAW 11
 #define DEEPGI_VIEW_AO_BLURRED 12
+// Deep radiosity: E (tonemapped) raw per layer and blurred, and the confidence
+// (fraction of taps used, grey).
+#define DEEPGI_VIEW_RADIOSITY_LAYER0 13
+#define DEEPGI_VIEW_RADIOSITY_LAYER1 14
+#define DEEPGI_VIEW_RADIOSITY_BLURRED 15
+#define DEEPGI_VIEW_RADIOSITY_CONFIDENCE 16
 
 #endif

@@ -45,6 +45,7 @@ struct Options {
     bool print_timings = false;
     bool gl_debug = false;
     deepgi::AoSettings ao;
+    deepgi::RadiositySettings radiosity;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
     std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
@@ -84,6 +85,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.exposure = options.exposure;
     settings.guard_band_fraction = options.guard_band;
     settings.ao = options.ao;
+    settings.radiosity = options.radiosity;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     settings.gl_debug = options.gl_debug;
     deepgi::validate(settings);
@@ -204,6 +206,28 @@ int main(int argc, char** argv) {
     app.add_option("--ao-max-mip", options.ao.max_mip_level,
                    fmt::format("Deep SAO: deepest depth-pyramid level (0 to {})",
                                deepgi::limits::max_ao_mip_level))
+        ->capture_default_str();
+
+    // Deep radiosity (docs/radiosity.md).
+    app.add_option("--radiosity-radius", options.radiosity.radius,
+                   "Deep radiosity: world-space gather radius (m)")
+        ->capture_default_str();
+    app.add_option("--radiosity-boost", options.radiosity.boost,
+                   "Deep radiosity: colour boost in [0, 1] (0: energy conserving)")
+        ->capture_default_str();
+    app.add_option("--radiosity-clamp", options.radiosity.tap_clamp,
+                   "Deep radiosity: largest contribution of one tap")
+        ->capture_default_str();
+    app.add_option("--rho-prop", options.radiosity.rho_prop,
+                   "Deep radiosity: share of last frame's indirect light in the next gather, "
+                   "[0, 1] (multiple bounces)")
+        ->capture_default_str();
+    app.add_option("--radiosity-alpha", options.radiosity.alpha,
+                   "Deep radiosity: temporal filter's history weight in [0, 1) (0: raw gather)")
+        ->capture_default_str();
+    app.add_option("--radiosity-layers", options.radiosity.layers,
+                   fmt::format("Deep radiosity: G-buffer layers gathered, 1 to {}",
+                               deepgi::limits::max_radiosity_layers))
         ->capture_default_str();
 
     try {

@@ -24,6 +24,7 @@ enum class OutputDecode {
     srgb_to_linear,     // RGBA8 sRGB-encoded -> linear RGB
     unorm_rgb,          // RGBA8 -> RGB in [0, 1]
     shadow_depth,       // depth with compare mode, switched off while reading
+    alpha,              // the A channel of an RGBA float texture (radiosity confidence)
 };
 
 struct PassOutput {

@@ -42,6 +42,14 @@ FloatImage read_pass_output(const PassOutput& output, float near_plane) {
             image.pixels = gl::read_floats(output.texture, output.level, output.layer, w, h,
                                            output.channels == 1 ? GL_RED : GL_RGB, output.channels);
             break;
+        case OutputDecode::alpha: {
+            const auto rgba =
+                gl::read_floats(output.texture, output.level, output.layer, w, h, GL_RGBA, 4);
+            image.channels = 1;
+            image.pixels.resize(pixels);
+            for (std::size_t i = 0; i < pixels; ++i) image.pixels[i] = rgba[4 * i + 3];
+            break;
+        }
         case OutputDecode::floats_rg_as_rgb: {
             const auto rg =
                 gl::read_floats(output.texture, output.level, output.layer, w, h, GL_RG, 2);

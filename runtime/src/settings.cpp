@@ -18,7 +18,7 @@ constexpr std::array<EnumName<Generator>, 3> generator_table = {{
     {Generator::reproject, "reproject"},
 }};
 
-constexpr std::array<EnumName<DebugView>, 13> view_table = {{
+constexpr std::array<EnumName<DebugView>, 17> view_table = {{
     {DebugView::final_image, "final"},
     {DebugView::normal_layer0, "normal-layer0"},
     {DebugView::normal_layer1, "normal-layer1"},
@@ -32,6 +32,10 @@ constexpr std::array<EnumName<DebugView>, 13> view_table = {{
     {DebugView::direct_layer1, "direct-layer1"},
     {DebugView::ao_raw, "ao-raw"},
     {DebugView::ao_blurred, "ao-blurred"},
+    {DebugView::radiosity_layer0, "radiosity-layer0"},
+    {DebugView::radiosity_layer1, "radiosity-layer1"},
+    {DebugView::radiosity_blurred, "radiosity-blurred"},
+    {DebugView::radiosity_confidence, "radiosity-confidence"},
 }};
 
 constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
@@ -136,6 +140,24 @@ void validate(const RenderSettings& settings) {
     if (ao.max_mip_level < 0 || ao.max_mip_level > limits::max_ao_mip_level) {
         throw InputError(fmt::format("--ao-max-mip must be in [0, {}], got {}",
                                      limits::max_ao_mip_level, ao.max_mip_level));
+    }
+    const RadiositySettings& radiosity = settings.radiosity;
+    auto unit_interval = [](float value) {
+        return std::isfinite(value) && value >= 0.0f && value <= 1.0f;
+    };
+    if (!finite_positive(radiosity.radius))
+        throw InputError("--radiosity-radius must be a finite number of metres > 0");
+    if (!unit_interval(radiosity.boost))
+        throw InputError("--radiosity-boost must be a number in [0, 1]");
+    if (!finite_positive(radiosity.tap_clamp))
+        throw InputError("--radiosity-clamp must be a finite number > 0");
+    if (!std::isfinite(radiosity.alpha) || radiosity.alpha < 0.0f || radiosity.alpha >= 1.0f)
+        throw InputError("--radiosity-alpha must be a number in [0, 1)");
+    if (!unit_interval(radiosity.rho_prop))
+        throw InputError("--rho-prop must be a number in [0, 1]");
+    if (radiosity.layers < 1 || radiosity.layers > limits::max_radiosity_layers) {
+        throw InputError(fmt::format("--radiosity-layers must be 1 or {}, got {}",
+                                     limits::max_radiosity_layers, radiosity.layers));
     }
 }
 

@@ -64,8 +64,8 @@ void check_against_reference(const Scene& scene, const RenderSettings& settings,
     const FrameReadBack frame = render_and_read(scene, settings, loader);
     const FloatImage expected = reference_ambient_visibility(frame.inputs, taps, settings.ao);
     const Agreement agreement = compare(frame.raw, expected, 1e-3f);
-    INFO("scene " << scene.name << ", method " << deepgi::to_string(settings.ao.method) << ", " << taps.size()
-                  << " taps, layers " << settings.ao.layers << ": "
+    INFO("scene " << scene.name << ", method " << deepgi::to_string(settings.ao.method) << ", "
+                  << taps.size() << " taps, layers " << settings.ao.layers << ": "
                   << agreement.fraction_within * 100.0 << "% within 1e-3, worst "
                   << agreement.worst);
     // Some pixels must be occluded, or the comparison checks only ones. The
@@ -233,7 +233,8 @@ float srgb_encode(float linear) {
     return c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-TEST_CASE("sao: compose multiplies the ambient term by the blurred visibility", "[compose]") {
+TEST_CASE("sao: compose adds albedo times E and the environment, times the blurred visibility",
+          "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     const RenderSettings settings = small_settings(160, 90);
@@ -245,23 +246,34 @@ TEST_CASE("sao: compose multiplies the ambient term by the blurred visibility", 
     const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
     const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
     const FloatImage visibility = renderer.read_pass_output("ao-blurred");
+    const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
+    const FloatImage confidence = renderer.read_pass_output("radiosity-blurred-confidence");
+    const float pi = 3.14159265f;
     int mismatches = 0;
     int visibility_matters = 0;
+    int radiosity_matters = 0;
     for (int y = 0; y < composed.height; ++y) {
         for (int x = 0; x < composed.width; ++x) {
             if (depth.at(x, y) <= 0.0f) continue;
-            for (int c = 0; c < 3; ++c) {
-                const float ambient = scene.ambient[c] * albedo.at(x, y, c);
+            const float c = std::clamp(confidence.at(x, y), 0.0f, 1.0f);
+            for (int k = 0; k < 3; ++k) {
+                // cornell has a black background: the environment is the
+                // constant ambient radiance, irradiance pi * ambient.
+                const float e = irradiance.at(x, y, k) + pi * scene.ambient[k] * (1.0f - c);
+                const float indirect = albedo.at(x, y, k) / pi * e;
                 const float expected =
-                    direct.at(x, y, c) + emissive.at(x, y, c) + ambient * visibility.at(x, y);
+                    direct.at(x, y, k) + emissive.at(x, y, k) + indirect * visibility.at(x, y);
                 // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
-                mismatches += std::abs(composed.at(x, y, c) - expected) > 0.035f * expected + 1e-5f;
-                visibility_matters += ambient * (1.0f - visibility.at(x, y)) > 0.1f * expected;
+                mismatches += std::abs(composed.at(x, y, k) - expected) > 0.035f * expected + 1e-5f;
+                visibility_matters += indirect * (1.0f - visibility.at(x, y)) > 0.1f * expected;
+                radiosity_matters +=
+                    albedo.at(x, y, k) / pi * irradiance.at(x, y, k) > 0.1f * expected;
             }
         }
     }
     CHECK(mismatches == 0);
     CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
+    CHECK(radiosity_matters > 100);   // and where leaving E out would
 }
 
 TEST_CASE("sao: the ao-raw and ao-blurred debug views show the visibility", "[compose]") {

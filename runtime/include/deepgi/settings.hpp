@@ -33,6 +33,10 @@ enum class DebugView {
     direct_layer1 = DEEPGI_VIEW_DIRECT_LAYER1,
     ao_raw = DEEPGI_VIEW_AO_RAW,          // deep SAO visibility before the bilateral blur
     ao_blurred = DEEPGI_VIEW_AO_BLURRED,  // after it: what the compose pass multiplies in
+    radiosity_layer0 = DEEPGI_VIEW_RADIOSITY_LAYER0,    // gathered E of layer 0, tonemapped
+    radiosity_layer1 = DEEPGI_VIEW_RADIOSITY_LAYER1,    // gathered E of layer 1, tonemapped
+    radiosity_blurred = DEEPGI_VIEW_RADIOSITY_BLURRED,  // layer 0's E after the bilateral blur
+    radiosity_confidence = DEEPGI_VIEW_RADIOSITY_CONFIDENCE,  // fraction of taps used
 };
 
 enum class TimingMode { automatic, cpu, gpu };
@@ -98,6 +102,7 @@ inline constexpr float max_guard_band_fraction = 1.0f;
 inline constexpr int max_ao_mip_level = 15;
 inline constexpr float min_ao_q = 1.0f;
 inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
+inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 }  // namespace limits
 
 // Deep SAO (design.md 3, step 4; docs/deep-sao.md). Tap count and spiral turns
@@ -110,6 +115,17 @@ struct AoSettings {
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
     AoMethod method = AoMethod::solid_angle;
+};
+
+// Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
+// and spiral turns come from the generated radiosity_taps.glsl.
+struct RadiositySettings {
+    float radius = 1.0f;      // world-space gather radius (m)
+    float boost = 0.0f;       // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
+    float tap_clamp = 16.0f;  // largest contribution B(Y) * cos of one sample, per channel
+    float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
+    float alpha = 0.85f;      // temporal filter: weight of the reprojected history (0: raw gather)
+    int layers = 2;           // 1: layer 0 only, 2: both deep G-buffer layers
 };
 
 struct RenderSettings {
@@ -126,6 +142,7 @@ struct RenderSettings {
     // GraphicsError naming the pass (costs a synchronous debug context).
     bool gl_debug = false;
     AoSettings ao;
+    RadiositySettings radiosity;
 };
 
 // Every check of every setting, enum values included; throws InputError with

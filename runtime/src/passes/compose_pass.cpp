@@ -1,5 +1,6 @@
-// Layer-0 outgoing radiance: direct light, ambient times the blurred deep SAO
-// visibility, and emissive (design.md 3, step 8).
+// Layer-0 outgoing radiance: direct light, albedo times the blurred deep
+// radiosity E (the environment filling where its confidence is low) times the
+// blurred deep SAO visibility, and emissive (design.md 3, step 8).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -29,6 +30,8 @@ public:
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
         glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY, frame.texture("radiosity.blurred"));
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());

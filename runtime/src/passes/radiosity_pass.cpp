@@ -1,0 +1,194 @@
+// Deep radiosity (design.md 3, steps 6 to 8): the gather of radiosity.frag
+// for both G-buffer layers into raw E + confidence, the temporal filter of
+// radiosity_temporal.frag into a ping-pong history pair per layer (whose
+// previous slot also feeds the next frame's bounce), and the bilateral blur
+// of layer 0's filtered result that the compose pass reads.
+#include "passes/passes.hpp"
+#include "shader_shared.hpp"
+
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+namespace deepgi {
+
+namespace {
+
+std::string history_name(int layer) {
+    return fmt::format("radiosity-layer{}", layer);
+}
+std::string key_name(int layer) {
+    return fmt::format("radiosity-key-layer{}", layer);
+}
+
+// Per-frame rotation of the tap pattern: frame k adds 2*pi*frac(k * 0.618...),
+// the golden-ratio sequence, whose angles stay evenly spread for any k.
+float frame_angle(int frame_index) {
+    const double golden = 0.6180339887498949;
+    const double turns = double(frame_index) * golden;
+    return float((turns - std::floor(turns)) * 6.283185307179586);
+}
+
+class RadiosityPass final : public Pass {
+public:
+    explicit RadiosityPass(const ShaderLoader& loader)
+        : gather_(build_fullscreen_program(loader, "radiosity.frag")),
+          temporal_(build_fullscreen_program(loader, "radiosity_temporal.frag")) {}
+
+    std::string_view name() const override { return "radiosity"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            raw_[layer] = gl::create_texture_2d(GL_RGBA16F, width_, height_);
+            label_texture(raw_[layer], name(), fmt::format("raw layer {}", layer));
+            raw_framebuffers_[layer] = framebuffer_for(raw_[layer], "radiosity raw");
+            // Allocated together, so both pairs write the same slot each frame.
+            HistoryPair& irradiance =
+                frame.allocate_history(history_name(layer), GL_RGBA16F, width_, height_);
+            HistoryPair& key = frame.allocate_history(key_name(layer), GL_RGBA16F, width_, height_);
+            for (int slot = 0; slot < 2; ++slot) {
+                gl::Framebuffer& framebuffer = framebuffers_[layer][slot];
+                framebuffer = gl::create_framebuffer();
+                glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0,
+                                          irradiance.slots[slot].get(), 0);
+                glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1,
+                                          key.slots[slot].get(), 0);
+                const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+                glNamedFramebufferDrawBuffers(framebuffer.get(), 2, buffers);
+                gl::check_framebuffer(framebuffer, "radiosity temporal");
+            }
+        }
+    }
+
+    void run(FrameResources& frame) override {
+        const RadiositySettings& settings = frame.settings->radiosity;
+        if (!frame.history_valid()) frame_index_ = 0;
+        const GLuint gather = gather_.get();
+        glUseProgram(gather);
+        glProgramUniform4f(gather, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, settings.radius,
+                           settings.boost, settings.tap_clamp, settings.rho_prop);
+        glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_LAYERS, settings.layers);
+        glProgramUniform1f(gather, DEEPGI_UNIFORM_RADIOSITY_ANGLE, frame_angle(frame_index_));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
+                          frame.history(history_name(0)).previous());
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1,
+                          frame.history(history_name(1)).previous());
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
+            glProgramUniform1i(gather, DEEPGI_UNIFORM_LAYER, layer);
+            draw_fullscreen_triangle(frame.empty_vertex_array);
+        }
+
+        const GLuint temporal = temporal_.get();
+        glUseProgram(temporal);
+        glProgramUniform1f(temporal, DEEPGI_UNIFORM_RADIOSITY_ALPHA, settings.alpha);
+        const glm::mat4 to_previous = camera_view_matrix(frame.previous_camera) *
+                                      glm::inverse(camera_view_matrix(frame.camera));
+        glProgramUniformMatrix4fv(temporal, DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS, 1, GL_FALSE,
+                                  &to_previous[0][0]);
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            const HistoryPair& irradiance = frame.history(history_name(layer));
+            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, raw_[layer].get());
+            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0, irradiance.previous());
+            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY,
+                              frame.history(key_name(layer)).previous());
+            begin_fullscreen(framebuffers_[layer][irradiance.written_slot].get(), width_, height_);
+            glProgramUniform1i(temporal, DEEPGI_UNIFORM_LAYER, layer);
+            draw_fullscreen_triangle(frame.empty_vertex_array);
+            written_[layer] = irradiance.written();
+            frame.publish(fmt::format("radiosity.raw.layer{}", layer), raw_[layer].get());
+            frame.publish(fmt::format("radiosity.irradiance.layer{}", layer), irradiance.written());
+        }
+        ++frame_index_;
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        std::vector<PassOutput> list;
+        for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+            list.push_back({.name = fmt::format("radiosity-raw-layer{}", layer),
+                            .texture = raw_[layer].get(),
+                            .width = width_,
+                            .height = height_});
+            list.push_back({.name = fmt::format("radiosity-irradiance-layer{}", layer),
+                            .texture = written_[layer],
+                            .width = width_,
+                            .height = height_});
+            list.push_back({.name = fmt::format("radiosity-confidence-layer{}", layer),
+                            .texture = written_[layer],
+                            .width = width_,
+                            .height = height_,
+                            .channels = 1,
+                            .decode = OutputDecode::alpha});
+        }
+        return list;
+    }
+
+private:
+    gl::Program gather_;
+    gl::Program temporal_;
+    gl::Texture raw_[DEEPGI_LAYER_COUNT];  // this frame's gather, before the temporal filter
+    gl::Framebuffer raw_framebuffers_[DEEPGI_LAYER_COUNT];
+    gl::Framebuffer framebuffers_[DEEPGI_LAYER_COUNT][2];  // [layer][history slot]: E + key
+    GLuint written_[DEEPGI_LAYER_COUNT] = {};              // this frame's filtered E + confidence
+    int frame_index_ = 0;  // frames since history was last invalidated
+    int width_ = 0;
+    int height_ = 0;
+};
+
+// Smooths layer 0's E and confidence with the AO's bilateral blur.
+class RadiosityBlurPass final : public Pass {
+public:
+    explicit RadiosityBlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader)) {}
+
+    std::string_view name() const override { return "radiosity_blur"; }
+
+    void resize(FrameResources& frame) override {
+        resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,
+                              GL_RGBA16F);
+        label_texture(blur_.horizontal, name(), "horizontal");
+        label_texture(blur_.output, name(), "output");
+    }
+
+    void run(FrameResources& frame) override {
+        run_bilateral_blur(blur_, frame.texture("radiosity.irradiance.layer0"),
+                           frame.texture("depth_pyramid"), frame.texture("gbuffer.normal"),
+                           frame.empty_vertex_array);
+        frame.publish("radiosity.blurred", blur_.output.get());
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        return {{.name = "radiosity-blurred",
+                 .texture = blur_.output.get(),
+                 .width = blur_.width,
+                 .height = blur_.height},
+                {.name = "radiosity-blurred-confidence",
+                 .texture = blur_.output.get(),
+                 .width = blur_.width,
+                 .height = blur_.height,
+                 .channels = 1,
+                 .decode = OutputDecode::alpha}};
+    }
+
+private:
+    BilateralBlur blur_;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<RadiosityPass>(loader);
+}
+
+std::unique_ptr<Pass> make_radiosity_blur_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<RadiosityBlurPass>(loader);
+}
+
+}  // namespace deepgi

@@ -1,0 +1,16 @@
+# Deep radiosity tests (labels runtime and radiosity). RADIOSITY_TAPS /
+# RADIOSITY_TAU (cmake/GeneratedHeaders.cmake) say which pattern the
+# build-time radiosity_taps.glsl holds, so the CPU evaluation uses the same.
+add_executable(deepgi_radiosity_tests radiosity_test.cpp)
+target_link_libraries(deepgi_radiosity_tests PRIVATE deepgi_sao_reference spiral_catch_main)
+target_include_directories(deepgi_radiosity_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
+set(_radiosity_test_tau 0)
+if(NOT "${RADIOSITY_TAU}" STREQUAL "")
+  set(_radiosity_test_tau ${RADIOSITY_TAU})
+endif()
+target_compile_definitions(deepgi_radiosity_tests PRIVATE
+  RADIOSITY_TEST_TAPS=${RADIOSITY_TAPS} RADIOSITY_TEST_TAU=${_radiosity_test_tau}
+  SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
+  SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
+add_test(NAME deepgi_radiosity COMMAND deepgi_radiosity_tests "[radiosity]")
+set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600)
