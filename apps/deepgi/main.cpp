@@ -42,6 +42,7 @@ struct Options {
     std::string dump;
     std::string timing = "auto";
     bool camera_path = false;
+    std::string camera;  // a file camera's name or index; empty for the scene's default
     bool print_timings = false;
     bool gl_debug = false;
     deepgi::AoSettings ao;
@@ -104,7 +105,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::SceneLimits limits;
     for (const auto& assignment : options.scene_limits) deepgi::set_scene_limit(limits, assignment);
-    const deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
+    deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
+    if (!options.camera.empty())
+        scene.default_camera = deepgi::find_file_camera(scene, options.camera);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
                                      options.output);
@@ -176,6 +179,9 @@ int main(int argc, char** argv) {
     app.add_option("--timing", options.timing,
                    "Pass timing: " + deepgi::enum_name_list<deepgi::TimingMode>() +
                        " (cpu: glFinish and a CPU clock; gpu: timer queries)");
+    app.add_option("--camera", options.camera,
+                   "View through the glTF file's camera of this name or index (default: its "
+                   "first perspective camera)");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,

@@ -92,10 +92,10 @@ TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][
         "no triangles");
     require_one_line_error(
         fmt::format("--headless --size 160x90 --scene '{}'", (dir / "lines.gltf").string()),
-        "not supported");
+        "contains no triangles (only 1 point or line primitives)");
     require_one_line_error(
         fmt::format("--headless --size 160x90 --scene '{}'", (dir / "scene.obj").string()),
-        "not glTF");
+        "is not a glTF file");
 }
 
 TEST_CASE("cli: an output directory that does not exist is an input error", "[runtime][cli]") {
