@@ -13,6 +13,7 @@
 #include <spiral/fileio.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -65,6 +66,12 @@ void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
 }
 
 void check_output_path(const fs::path& output) {
+    std::string extension = output.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".png")
+        throw deepgi::InputError(fmt::format(
+            "--output '{}': only PNG is written; the name must end in .png", output.string()));
     const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
     if (!fs::is_directory(parent)) {
         throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist",
@@ -134,6 +141,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
             renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish" : "GL timer queries");
         for (const auto& timing : renderer.last_timings())
             fmt::print("{:<14} {:8.3f} ms\n", timing.pass, timing.milliseconds);
+        double total = 0.0;
+        for (const auto& timing : renderer.last_timings()) total += timing.milliseconds;
+        fmt::print("{:<14} {:8.3f} ms\n", "total", total);
     }
     return 0;
 }
@@ -229,6 +239,15 @@ int main(int argc, char** argv) {
         deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) return run_headless(options, settings);
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
+        // The window would silently ignore these; say so instead.
+        std::string headless_only;
+        for (const char* name : {"--output", "--dump", "--frames", "--camera"})
+            if (app.count(name) > 0)
+                headless_only += std::string(headless_only.empty() ? "" : ", ") + name;
+        if (!headless_only.empty())
+            throw deepgi::InputError(
+                fmt::format("{} only apply with --headless (leaving out --headless opens a window)",
+                            headless_only));
         return deepgi::run_interactive(options.scene, settings);
     } catch (const deepgi::InputError& error) {
         fmt::print(stderr, "deepgi: error: {}\n", error.what());

@@ -98,6 +98,25 @@ TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][
         "is not a glTF file");
 }
 
+TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runtime][cli]") {
+    // Window mode: refused before any window opens, so no display is needed.
+    require_one_line_error("--size 160x90 --dump d --frames 3",
+                           "--output, --dump, --frames only apply with --headless");
+    require_one_line_error("--size 160x90 --camera 0", "--camera only apply with --headless");
+    require_one_line_error("--headless --size 160x90 --camera 0",
+                           "scene 'cornell' has no such perspective camera (it has none)");
+    const fs::path jpeg = scratch() / "image.jpg";
+    const RunResult result =
+        run_deepgi("--headless --size 160x90 --output '" + jpeg.string() + "'");
+    INFO(result.stderr_text);
+    REQUIRE(result.status == 2);
+    REQUIRE(result.stderr_text ==
+            fmt::format("deepgi: error: --output '{}': only PNG is written; the name must end in "
+                        ".png\n",
+                        jpeg.string()));
+    REQUIRE_FALSE(fs::exists(jpeg));
+}
+
 TEST_CASE("cli: an output directory that does not exist is an input error", "[runtime][cli]") {
     const RunResult result = run_deepgi("--headless --size 16x9 --output /nonexistent-dir/out.png");
     REQUIRE(result.status == 2);
