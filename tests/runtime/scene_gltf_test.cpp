@@ -462,8 +462,43 @@ TEST_CASE("gltf loader: everything ignored is named in one summary line", "[runt
         if (contains(warning, "ignored")) summaries.push_back(warning);
     REQUIRE(summaries == std::vector<std::string>{
                              "ignored: 2 skins, 1 animation, 1 normal texture, 1 MASK material, "
-                             "KHR_texture_transform, KHR_lights_punctual"});
+                             "KHR_texture_transform"});
     // A file using only what is read has no summary.
     for (const auto& warning : load(triangle_gltf({})).warnings)
         REQUIRE(!contains(warning, "ignored"));
+}
+
+TEST_CASE("gltf loader: the first directional or spot light is the key light, the rest dropped",
+          "[runtime][gltf]") {
+    // Node 1: point light 0 (unsupported). Node 2: spot light 1 at (0,4,0)
+    // turned -90 degrees about +X, so its -Z points down -Y. Node 3: sun 2.
+    TriangleFile file;
+    const double s = std::sqrt(0.5);
+    file.nodes = fmt::format(R"([{{"mesh":0,"children":[1,2,3]}},)"
+                             R"({{"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}},)"
+                             R"({{"translation":[0,4,0],"rotation":[{0},0,0,{1}],)"
+                             R"("extensions":{{"KHR_lights_punctual":{{"light":1}}}}}},)"
+                             R"({{"extensions":{{"KHR_lights_punctual":{{"light":2}}}}}}])",
+                             -s, s);
+    file.extra =
+        R"(,"extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[)"
+        R"({"type":"point","name":"bulb","intensity":10},)"
+        R"({"type":"spot","name":"lamp","intensity":1366,"color":[1,0.5,0.25],)"
+        R"("spot":{"innerConeAngle":0.25,"outerConeAngle":0.5}},)"
+        R"({"type":"directional","name":"sun","intensity":683}]}})";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    const deepgi::KeyLight& key = scene.key_light;
+    CHECK(key.kind == deepgi::LightKind::spot);
+    CHECK(key.position.y == Approx(4.0f));
+    CHECK(key.direction.x == Approx(0.0f).margin(1e-6));
+    CHECK(key.direction.y == Approx(-1.0f));
+    CHECK(key.direction.z == Approx(0.0f).margin(1e-6));
+    CHECK(key.intensity == Approx(2.0f));  // 1366 cd / 683 lm/W
+    CHECK(key.colour == glm::vec3(1.0f, 0.5f, 0.25f));
+    CHECK(key.inner_cone == 0.25f);
+    CHECK(key.outer_cone == 0.5f);
+    CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
+                     "dropped lights: 0 'bulb' (point), 2 'sun' (directional, one key light "
+                     "only)") == 1);
+    for (const auto& warning : scene.warnings) CHECK(!contains(warning, "ignored"));
 }

@@ -426,7 +426,8 @@ std::string ignored_summary(const tinygltf::Model& model, std::uint64_t orthogra
         counted(masked, "MASK material"),
     };
     for (const auto& extension : model.extensionsUsed)
-        if (extension != "KHR_materials_emissive_strength") parts.push_back(extension);
+        if (extension != "KHR_materials_emissive_strength" && extension != "KHR_lights_punctual")
+            parts.push_back(extension);
     std::string line;
     for (const auto& part : parts) {
         if (part.empty()) continue;
@@ -651,6 +652,53 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         scene.file_cameras.push_back(file_camera);
     };
 
+    // KHR_lights_punctual: the renderer has one shadowed key light, directional
+    // or spot. The first such light met walking the nodes is it; every other
+    // placement (point lights, further lights) is named as dropped. The
+    // extension's photometric units (lux, candela) become the renderer's
+    // radiometric ones through 683 lm/W, the luminous efficacy the
+    // extension's units are defined against.
+    bool have_key_light = false;
+    std::vector<std::string> dropped_lights;
+    auto add_light = [&](int light_index, const glm::mat4& transform) {
+        const auto& light = model.lights[std::size_t(light_index)];
+        const std::string label = fmt::format(
+            "{}{}", light_index, light.name.empty() ? "" : fmt::format(" '{}'", light.name));
+        if (light.type != "directional" && light.type != "spot") {
+            dropped_lights.push_back(fmt::format("{} ({})", label, light.type));
+            return;
+        }
+        if (have_key_light) {
+            dropped_lights.push_back(fmt::format("{} ({}, one key light only)", label, light.type));
+            return;
+        }
+        const glm::vec3 direction = glm::mat3(transform) * glm::vec3(0, 0, -1);
+        const float length = glm::length(direction);
+        if (!(length > 0.0f) || !std::isfinite(length))
+            reader.fail(fmt::format("light {} has a degenerate node transform", light_index));
+        if (!(light.intensity >= 0.0) || !std::isfinite(light.intensity))
+            reader.fail(
+                fmt::format("light {}: intensity must be a finite number >= 0", light_index));
+        KeyLight key;
+        key.kind = light.type == "spot" ? LightKind::spot : LightKind::directional;
+        key.direction = direction / length;
+        key.position = glm::vec3(transform * glm::vec4(0, 0, 0, 1));
+        key.colour = light.color.size() == 3
+                         ? glm::vec3(light.color[0], light.color[1], light.color[2])
+                         : glm::vec3(1.0f);
+        key.intensity = float(light.intensity / 683.0);
+        if (key.kind == LightKind::spot) {
+            const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+            if (!(inner >= 0.0 && inner < outer && outer <= 1.5707963268))
+                reader.fail(fmt::format(
+                    "light {}: spot cone angles need 0 <= inner < outer <= pi/2", light_index));
+            key.inner_cone = float(inner);
+            key.outer_cone = float(outer);
+        }
+        scene.key_light = key;
+        have_key_light = true;
+    };
+
     // A node listed by several parents is visited once per path, so a few
     // nodes can describe 2^40 visits; the depth limit alone does not bound that.
     std::uint64_t visits = 0;
@@ -667,6 +715,14 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                     limits.node_visits));
             const auto& node = model.nodes[std::size_t(node_index)];
             const glm::mat4 transform = parent * node_transform(node);
+            if (auto it = node.extensions.find("KHR_lights_punctual");
+                it != node.extensions.end() && it->second.Has("light")) {
+                const auto& value = it->second.Get("light");
+                const int light = value.IsInt() ? value.Get<int>() : -1;
+                if (light < 0 || light >= int(model.lights.size()))
+                    reader.fail("KHR_lights_punctual light index out of range");
+                add_light(light, transform);
+            }
             if (node.camera >= 0) {
                 if (node.camera >= int(model.cameras.size()))
                     reader.fail("camera index out of range");
@@ -784,9 +840,16 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         orbit.position = centre - camera_forward(orbit) * distance;
         scene.camera_path.keys.push_back(orbit);
     }
-    scene.key_light.kind = LightKind::directional;
-    scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-    scene.key_light.intensity = 3.0f;
+    if (!have_key_light) {
+        scene.key_light.kind = LightKind::directional;
+        scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+        scene.key_light.intensity = 3.0f;
+    }
+    if (!dropped_lights.empty()) {
+        std::string list;
+        for (const auto& light : dropped_lights) list += (list.empty() ? "" : ", ") + light;
+        scene.warnings.push_back("dropped lights: " + list);
+    }
     scene.ambient = glm::vec3(0.05f);
     scene.background = glm::vec3(0.2f, 0.22f, 0.25f);
     return scene;
