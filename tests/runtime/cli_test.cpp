@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -115,6 +117,32 @@ TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runti
                         ".png\n",
                         jpeg.string()));
     REQUIRE_FALSE(fs::exists(jpeg));
+}
+
+TEST_CASE("cli: --print-timings ends with the total of the passes it lists", "[runtime][cli]") {
+    const fs::path dir = scratch();
+    const fs::path timings = dir / "timings.txt";
+    const std::string command =
+        fmt::format("'{}' --headless --size 96x64 --print-timings --output '{}' > '{}'",
+                    DEEPGI_EXECUTABLE, (dir / "timed.png").string(), timings.string());
+    REQUIRE(std::system(command.c_str()) == 0);
+    std::ifstream stream(timings);
+    std::string line;
+    std::vector<std::pair<std::string, double>> rows;
+    while (std::getline(stream, line)) {
+        char name[64] = {};
+        double ms = 0.0;
+        if (std::sscanf(line.c_str(), "%63s %lf ms", name, &ms) == 2) rows.emplace_back(name, ms);
+    }
+    REQUIRE(rows.size() >= 3);
+    REQUIRE(rows.back().first == "total");
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+        REQUIRE(rows[i].first != "total");
+        sum += rows[i].second;
+    }
+    // Each printed value is rounded to 0.001 ms.
+    REQUIRE(std::abs(rows.back().second - sum) <= 0.0005 * double(rows.size()));
 }
 
 TEST_CASE("cli: an output directory that does not exist is an input error", "[runtime][cli]") {
