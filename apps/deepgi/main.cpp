@@ -13,6 +13,7 @@
 #include <spiral/fileio.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -42,6 +43,7 @@ struct Options {
     std::string dump;
     std::string timing = "auto";
     bool camera_path = false;
+    std::string camera;  // a file camera's name or index; empty for the scene's default
     bool print_timings = false;
     bool gl_debug = false;
     deepgi::AoSettings ao;
@@ -65,6 +67,12 @@ void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
 }
 
 void check_output_path(const fs::path& output) {
+    std::string extension = output.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".png")
+        throw deepgi::InputError(fmt::format(
+            "--output '{}': only PNG is written; the name must end in .png", output.string()));
     const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
     if (!fs::is_directory(parent)) {
         throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist",
@@ -106,7 +114,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::SceneLimits limits;
     for (const auto& assignment : options.scene_limits) deepgi::set_scene_limit(limits, assignment);
-    const deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
+    deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
+    if (!options.camera.empty())
+        scene.default_camera = deepgi::find_file_camera(scene, options.camera);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
                                      options.output);
@@ -133,6 +143,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
             renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish" : "GL timer queries");
         for (const auto& timing : renderer.last_timings())
             fmt::print("{:<14} {:8.3f} ms\n", timing.pass, timing.milliseconds);
+        double total = 0.0;
+        for (const auto& timing : renderer.last_timings()) total += timing.milliseconds;
+        fmt::print("{:<14} {:8.3f} ms\n", "total", total);
     }
     return 0;
 }
@@ -178,6 +191,9 @@ int main(int argc, char** argv) {
     app.add_option("--timing", options.timing,
                    "Pass timing: " + deepgi::enum_name_list<deepgi::TimingMode>() +
                        " (cpu: glFinish and a CPU clock; gpu: timer queries)");
+    app.add_option("--camera", options.camera,
+                   "View through the glTF file's camera of this name or index (default: its "
+                   "first perspective camera)");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
@@ -247,6 +263,15 @@ int main(int argc, char** argv) {
         deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) return run_headless(options, settings);
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
+        // The window would silently ignore these; say so instead.
+        std::string headless_only;
+        for (const char* name : {"--output", "--dump", "--frames", "--camera"})
+            if (app.count(name) > 0)
+                headless_only += std::string(headless_only.empty() ? "" : ", ") + name;
+        if (!headless_only.empty())
+            throw deepgi::InputError(
+                fmt::format("{} only apply with --headless (leaving out --headless opens a window)",
+                            headless_only));
         return deepgi::run_interactive(options.scene, settings);
     } catch (const deepgi::InputError& error) {
         fmt::print(stderr, "deepgi: error: {}\n", error.what());

@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -92,10 +94,55 @@ TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][
         "no triangles");
     require_one_line_error(
         fmt::format("--headless --size 160x90 --scene '{}'", (dir / "lines.gltf").string()),
-        "not supported");
+        "contains no triangles (only 1 point or line primitives)");
     require_one_line_error(
         fmt::format("--headless --size 160x90 --scene '{}'", (dir / "scene.obj").string()),
-        "not glTF");
+        "is not a glTF file");
+}
+
+TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runtime][cli]") {
+    // Window mode: refused before any window opens, so no display is needed.
+    require_one_line_error("--size 160x90 --dump d --frames 3",
+                           "--output, --dump, --frames only apply with --headless");
+    require_one_line_error("--size 160x90 --camera 0", "--camera only apply with --headless");
+    require_one_line_error("--headless --size 160x90 --camera 0",
+                           "scene 'cornell' has no such perspective camera (it has none)");
+    const fs::path jpeg = scratch() / "image.jpg";
+    const RunResult result =
+        run_deepgi("--headless --size 160x90 --output '" + jpeg.string() + "'");
+    INFO(result.stderr_text);
+    REQUIRE(result.status == 2);
+    REQUIRE(result.stderr_text ==
+            fmt::format("deepgi: error: --output '{}': only PNG is written; the name must end in "
+                        ".png\n",
+                        jpeg.string()));
+    REQUIRE_FALSE(fs::exists(jpeg));
+}
+
+TEST_CASE("cli: --print-timings ends with the total of the passes it lists", "[runtime][cli]") {
+    const fs::path dir = scratch();
+    const fs::path timings = dir / "timings.txt";
+    const std::string command =
+        fmt::format("'{}' --headless --size 96x64 --print-timings --output '{}' > '{}'",
+                    DEEPGI_EXECUTABLE, (dir / "timed.png").string(), timings.string());
+    REQUIRE(std::system(command.c_str()) == 0);
+    std::ifstream stream(timings);
+    std::string line;
+    std::vector<std::pair<std::string, double>> rows;
+    while (std::getline(stream, line)) {
+        char name[64] = {};
+        double ms = 0.0;
+        if (std::sscanf(line.c_str(), "%63s %lf ms", name, &ms) == 2) rows.emplace_back(name, ms);
+    }
+    REQUIRE(rows.size() >= 3);
+    REQUIRE(rows.back().first == "total");
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+        REQUIRE(rows[i].first != "total");
+        sum += rows[i].second;
+    }
+    // Each printed value is rounded to 0.001 ms.
+    REQUIRE(std::abs(rows.back().second - sum) <= 0.0005 * double(rows.size()));
 }
 
 TEST_CASE("cli: an output directory that does not exist is an input error", "[runtime][cli]") {

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -237,4 +238,267 @@ TEST_CASE("gltf loader: scene limits parse as NAME=VALUE", "[runtime][gltf]") {
     for (const char* bad : {"triangles", "triangles=", "triangles=0", "triangles=-1",
                             "triangles=1e6", "colours=3", "texture-side=18446744073709551616"})
         REQUIRE_THROWS_AS(deepgi::set_scene_limit(limits, bad), InputError);
+}
+
+namespace {
+
+// A GLB container around `json`: 12-byte header, then one JSON chunk padded
+// with spaces to 4 bytes (the buffer stays a data URI inside the JSON).
+std::string glb_of(std::string json) {
+    while (json.size() % 4 != 0) json += ' ';
+    std::vector<std::uint8_t> bytes;
+    append(bytes, std::uint32_t(0x46546C67));  // "glTF"
+    append(bytes, std::uint32_t(2));
+    append(bytes, std::uint32_t(12 + 8 + json.size()));
+    append(bytes, std::uint32_t(json.size()));
+    append(bytes, std::uint32_t(0x4E4F534A));  // "JSON"
+    bytes.insert(bytes.end(), json.begin(), json.end());
+    return std::string(bytes.begin(), bytes.end());
+}
+
+std::string load_scene_refusal(const fs::path& path) {
+    try {
+        deepgi::load_scene(path.string());
+    } catch (const InputError& error) {
+        return error.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("gltf loader: scene files are recognised by content, not by name", "[runtime][gltf]") {
+    const fs::path dir = fs::temp_directory_path() / fmt::format("gltf-sniff-{}", ::getpid());
+    fs::create_directories(dir);
+    auto write = [&](const char* name, const std::string& content) {
+        std::ofstream(dir / name, std::ios::binary) << content;
+        return dir / name;
+    };
+    const std::string json = triangle_gltf({});
+    REQUIRE(glb_of(json).substr(0, 4) == "glTF");
+    const fs::path passwd = write("passwd", "root:x:0:0:root:/root:/bin/sh\n");
+    const fs::path text_named_gltf = write("notes.gltf", "hello\n");
+    const fs::path upper_json = write("UPPER.GLTF", json);
+    const fs::path upper_glb = write("UPPER.GLB", glb_of(json));
+    const fs::path glb_as_gltf = write("binary.gltf", glb_of(json));  // the magic decides
+    const fs::path glb_as_bin = write("model.bin", glb_of(json));
+    const fs::path json_no_extension = write("model", "\xEF\xBB\xBF \n" + json);
+
+    CHECK(contains(load_scene_refusal(passwd), "is not a glTF file"));
+    CHECK(contains(load_scene_refusal(text_named_gltf), "is not a glTF file"));
+    CHECK(contains(load_scene_refusal(dir / "missing.GLB"), "does not exist"));
+    CHECK(contains(load_scene_refusal(dir / "no_such_scene_name"), "unknown scene"));
+    for (const fs::path& path :
+         {upper_json, upper_glb, glb_as_gltf, glb_as_bin, json_no_extension}) {
+        INFO(path.filename().string());
+        CHECK(deepgi::load_scene(path.string()).indices.size() == 3);
+    }
+    fs::remove_all(dir);
+}
+
+namespace {
+
+// Five vertices v0 (0,0,0), v1 (1,0,0), v2 (0,1,0), v3 (1,1,0), v4 (0,2,0),
+// unindexed, drawn by one primitive per entry of `modes`.
+std::string five_vertex_gltf(const std::vector<int>& modes) {
+    std::vector<std::uint8_t> buffer;
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 1.f, 0.f, 0.f, 2.f, 0.f})
+        append(buffer, v);
+    std::string primitives;
+    for (int mode : modes)
+        primitives += fmt::format(R"({}{{"attributes":{{"POSITION":0}},"mode":{}}})",
+                                  primitives.empty() ? "" : ",", mode);
+    return fmt::format(
+        R"({{"asset":{{"version":"2.0"}},)"
+        R"("buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],)"
+        R"("bufferViews":[{{"buffer":0,"byteLength":{}}}],)"
+        R"("accessors":[{{"bufferView":0,"componentType":5126,"type":"VEC3","count":5}}],)"
+        R"("meshes":[{{"primitives":[{}]}}],"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}]}})",
+        buffer.size(), base64(buffer), buffer.size(), primitives);
+}
+
+}  // namespace
+
+TEST_CASE("gltf loader: strips and fans become triangles with the specification's winding",
+          "[runtime][gltf]") {
+    // Strip 0 1 2 3 4 by hand: (0,1,2) (1,3,2) (2,3,4), the odd one swapped.
+    // Fan 0 1 2 3 4 by hand: (1,2,0) (2,3,0) (3,4,0).
+    const glm::vec3 v[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}};
+    const int expected[6][3] = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {1, 2, 0}, {2, 3, 0}, {3, 4, 0}};
+    // The strip stays counter-clockwise seen from +z (the odd swap at work);
+    // the fan's (2,3,0) turns clockwise, as v1..v4 do not circle v0 in order.
+    const float facing[6] = {1, 1, 1, 1, -1, 1};
+    const deepgi::Scene scene = load(five_vertex_gltf({5, 6}));
+    REQUIRE(scene.indices.size() == 18);
+    REQUIRE(scene.warnings ==
+            std::vector<std::string>{"the file has no perspective camera; using a fitted view"});
+    for (int t = 0; t < 6; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            INFO("triangle " << t << " corner " << k);
+            const auto& vertex = scene.vertices[scene.indices[std::size_t(3 * t + k)]];
+            REQUIRE(vertex.position == v[expected[t][k]]);
+            // Flat normals follow the winding: cross(b - a, c - a) by hand.
+            REQUIRE(vertex.normal == glm::vec3(0, 0, facing[t]));
+        }
+    }
+}
+
+TEST_CASE("gltf loader: points and lines are skipped with one warning giving the count",
+          "[runtime][gltf]") {
+    // Points, lines, line loop and line strip, then a fan that is rendered.
+    const deepgi::Scene scene = load(five_vertex_gltf({0, 1, 2, 3, 6}));
+    REQUIRE(scene.indices.size() == 9);  // the fan's three triangles only
+    REQUIRE(std::count(scene.warnings.begin(), scene.warnings.end(),
+                       "skipped 4 point or line primitive(s): they are not surfaces") == 1);
+    REQUIRE(scene.warnings.size() == 2);  // and the fitted view's
+    REQUIRE(refusal(five_vertex_gltf({0, 3})) ==
+            "glTF file 'crafted.gltf': contains no triangles (only 2 point or line primitives)");
+    REQUIRE(contains(refusal(five_vertex_gltf({7})), "primitive mode 7 is not supported"));
+}
+
+TEST_CASE("gltf loader: the file's first perspective camera is the view, with its node transform",
+          "[runtime][gltf]") {
+    // Camera 0 is orthographic (ignored); camera 1 sits at (1,2,3) turned +90
+    // degrees about +Y, so it looks down -X with +Z on its left and -Z on its
+    // right. Camera 2 ("back") is only reachable by --camera.
+    TriangleFile file;
+    const double s = std::sqrt(0.5);
+    file.nodes = fmt::format(R"([{{"mesh":0,"children":[1,2,3]}},{{"camera":0}},)"
+                             R"({{"camera":1,"translation":[1,2,3],"rotation":[0,{0},0,{0}]}},)"
+                             R"({{"camera":2,"name":"back node","translation":[0,0,5]}}])",
+                             s);
+    file.extra =
+        R"(,"cameras":[{"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":9}},)"
+        R"({"type":"perspective","name":"key","perspective":{"yfov":0.7,"znear":0.25}},)"
+        R"({"type":"perspective","perspective":{"yfov":1.0,"znear":0.5,"aspectRatio":1.5}}])";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    REQUIRE(scene.file_cameras.size() == 2);
+    const deepgi::Camera& camera = scene.default_camera;
+    CHECK(camera.vertical_fov == Approx(0.7f));
+    CHECK(camera.near_plane == Approx(0.25f));
+    // Hand-computed view: eye (1,2,3) looking at (0,2,3), up +Y, so right is -Z.
+    const glm::mat4 view = deepgi::camera_view_matrix(camera);
+    const auto in_view = [&](glm::vec3 world) { return glm::vec3(view * glm::vec4(world, 1)); };
+    for (auto [world, expected] : {std::pair{glm::vec3(0, 2, 3), glm::vec3(0, 0, -1)},
+                                   std::pair{glm::vec3(1, 2, 2), glm::vec3(1, 0, 0)},
+                                   std::pair{glm::vec3(1, 3, 3), glm::vec3(0, 1, 0)}}) {
+        const glm::vec3 got = in_view(world);
+        for (int axis = 0; axis < 3; ++axis)
+            CHECK(got[axis] == Approx(expected[axis]).margin(1e-5));
+    }
+    CHECK(std::count_if(scene.warnings.begin(), scene.warnings.end(), [](const std::string& w) {
+              return w.find("1 orthographic camera") != std::string::npos;
+          }) == 1);
+    // --camera by name (the node's, as the camera has none) and by file index.
+    const deepgi::Camera back = deepgi::find_file_camera(scene, "back node");
+    CHECK(back.position == glm::vec3(0, 0, 5));
+    CHECK(back.yaw == 0.0f);
+    CHECK(deepgi::find_file_camera(scene, "2").near_plane == 0.5f);
+    CHECK(deepgi::find_file_camera(scene, "key").near_plane == 0.25f);
+    try {
+        deepgi::find_file_camera(scene, "0");  // orthographic: not selectable
+        FAIL("camera 0 was accepted");
+    } catch (const InputError& error) {
+        CHECK(std::string(error.what()) ==
+              "--camera '0': scene 'crafted.gltf' has no such perspective camera (it has 1 "
+              "'key', 2 'back node')");
+    }
+}
+
+TEST_CASE("gltf loader: a double-sided material gets the back face, wound back, normal flipped",
+          "[runtime][gltf]") {
+    TriangleFile file;
+    file.primitive_extra = R"(,"material":0)";
+    file.extra = R"(,"materials":[{"doubleSided":true}])";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    REQUIRE(scene.indices.size() == 6);
+    const glm::vec3 front[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const glm::vec3 back[3] = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}};  // a, c, b
+    for (int k = 0; k < 3; ++k) {
+        const auto& f = scene.vertices[scene.indices[std::size_t(k)]];
+        const auto& b = scene.vertices[scene.indices[std::size_t(3 + k)]];
+        REQUIRE(f.position == front[k]);
+        REQUIRE(f.normal == glm::vec3(0, 0, 1));
+        REQUIRE(b.position == back[k]);
+        REQUIRE(b.normal == glm::vec3(0, 0, -1));
+    }
+    // Single-sided (the default) stays one face.
+    file.extra = R"(,"materials":[{"doubleSided":false}])";
+    REQUIRE(load(triangle_gltf(file)).indices.size() == 3);
+}
+
+TEST_CASE("gltf loader: emissive strength scales the factor; BLEND is opaque with one warning",
+          "[runtime][gltf]") {
+    TriangleFile file;
+    file.primitive_extra = R"(,"material":0)";
+    file.extra =
+        R"(,"extensionsUsed":["KHR_materials_emissive_strength"],"materials":[{"emissiveFactor":[0.5,0.25,1],)"
+        R"("alphaMode":"BLEND","extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}}}])";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    REQUIRE(scene.materials.size() == 1);
+    REQUIRE(scene.materials[0].emissive == glm::vec3(2.0f, 1.0f, 4.0f));
+    REQUIRE(std::count(scene.warnings.begin(), scene.warnings.end(),
+                       "1 material(s) with alphaMode BLEND are rendered opaque") == 1);
+    // The extension is used, so it is not listed as ignored.
+    for (const auto& warning : scene.warnings) REQUIRE(!contains(warning, "ignored"));
+    file.extra =
+        R"(,"materials":[{"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":-1}}}])";
+    REQUIRE(contains(refusal(triangle_gltf(file)),
+                     "material 0: emissiveStrength must be a finite number >= 0"));
+}
+
+TEST_CASE("gltf loader: everything ignored is named in one summary line", "[runtime][gltf]") {
+    TriangleFile file;
+    file.primitive_extra = R"(,"material":0)";
+    file.extra =
+        R"(,"extensionsUsed":["KHR_texture_transform","KHR_lights_punctual"],)"
+        R"("skins":[{"joints":[0]},{"joints":[0]}],)"
+        R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
+        R"("samplers":[{"input":0,"output":0}]}],)"
+        R"("materials":[{"alphaMode":"MASK","normalTexture":{"index":0}}])";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    std::vector<std::string> summaries;
+    for (const auto& warning : scene.warnings)
+        if (contains(warning, "ignored")) summaries.push_back(warning);
+    REQUIRE(summaries == std::vector<std::string>{
+                             "ignored: 2 skins, 1 animation, 1 normal texture, 1 MASK material, "
+                             "KHR_texture_transform"});
+    // A file using only what is read has no summary.
+    for (const auto& warning : load(triangle_gltf({})).warnings)
+        REQUIRE(!contains(warning, "ignored"));
+}
+
+TEST_CASE("gltf loader: the first directional or spot light is the key light, the rest dropped",
+          "[runtime][gltf]") {
+    // Node 1: point light 0 (unsupported). Node 2: spot light 1 at (0,4,0)
+    // turned -90 degrees about +X, so its -Z points down -Y. Node 3: sun 2.
+    TriangleFile file;
+    const double s = std::sqrt(0.5);
+    file.nodes = fmt::format(R"([{{"mesh":0,"children":[1,2,3]}},)"
+                             R"({{"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}},)"
+                             R"({{"translation":[0,4,0],"rotation":[{0},0,0,{1}],)"
+                             R"("extensions":{{"KHR_lights_punctual":{{"light":1}}}}}},)"
+                             R"({{"extensions":{{"KHR_lights_punctual":{{"light":2}}}}}}])",
+                             -s, s);
+    file.extra =
+        R"(,"extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[)"
+        R"({"type":"point","name":"bulb","intensity":10},)"
+        R"({"type":"spot","name":"lamp","intensity":1366,"color":[1,0.5,0.25],)"
+        R"("spot":{"innerConeAngle":0.25,"outerConeAngle":0.5}},)"
+        R"({"type":"directional","name":"sun","intensity":683}]}})";
+    const deepgi::Scene scene = load(triangle_gltf(file));
+    const deepgi::KeyLight& key = scene.key_light;
+    CHECK(key.kind == deepgi::LightKind::spot);
+    CHECK(key.position.y == Approx(4.0f));
+    CHECK(key.direction.x == Approx(0.0f).margin(1e-6));
+    CHECK(key.direction.y == Approx(-1.0f));
+    CHECK(key.direction.z == Approx(0.0f).margin(1e-6));
+    CHECK(key.intensity == Approx(2.0f));  // 1366 cd / 683 lm/W
+    CHECK(key.colour == glm::vec3(1.0f, 0.5f, 0.25f));
+    CHECK(key.inner_cone == 0.25f);
+    CHECK(key.outer_cone == 0.5f);
+    CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
+                     "dropped lights: 0 'bulb' (point), 2 'sun' (directional, one key light "
+                     "only)") == 1);
+    for (const auto& warning : scene.warnings) CHECK(!contains(warning, "ignored"));
 }

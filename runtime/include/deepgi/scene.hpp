@@ -65,6 +65,13 @@ struct KeyLight {
     float inner_cone = glm::radians(45.0f);
 };
 
+// A perspective camera placed in a scene file, in file order of traversal.
+struct FileCamera {
+    std::string name;  // the camera's name, or its node's when the camera has none
+    int index = 0;     // its index in the file's camera list
+    Camera camera;
+};
+
 struct Bounds {
     glm::vec3 min{0.0f};
     glm::vec3 max{0.0f};
@@ -83,6 +90,12 @@ struct Scene {
     glm::vec3 ambient{0.03f};    // constant fill until the radiosity pass exists
     glm::vec3 background{0.0f};  // radiance where no surface is hit
     Bounds bounds;
+    // What a scene file holds that is not rendered as written (one line each).
+    // load_gltf_scene also prints them to stderr; the in-memory loader does not.
+    std::vector<std::string> warnings;
+    // The file's perspective cameras; default_camera is the first of them, or
+    // a fitted view when there are none.
+    std::vector<FileCamera> file_cameras;
 };
 
 std::vector<std::string> builtin_scene_names();
@@ -125,6 +138,10 @@ Scene load_gltf_scene_from_memory(std::span<const std::uint8_t> bytes, bool bina
 
 // A built-in name, or a path ending in .gltf/.glb.
 Scene load_scene(std::string_view name_or_path, const SceneLimits& limits = {});
+
+// The file camera named `name_or_index` (its name, or its index in the file's
+// camera list); throws InputError naming the cameras there are.
+Camera find_file_camera(const Scene& scene, std::string_view name_or_index);
 
 glm::vec3 camera_forward(const Camera& camera);
 glm::mat4 camera_view_matrix(const Camera& camera);

@@ -12,6 +12,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -359,6 +360,97 @@ bool no_write(std::string* error, const std::string&, const std::vector<unsigned
     return false;
 }
 
+// Strips and fans as a plain triangle list, winding as the glTF specification
+// defines it: strip triangle i is (i, i+1, i+2) for even i and (i, i+2, i+1)
+// for odd i, so every triangle keeps the first one's orientation; fan triangle
+// i is (i+1, i+2, 0).
+std::vector<std::uint32_t> triangle_list(int mode, std::vector<std::uint32_t> indices) {
+    if (mode == TINYGLTF_MODE_TRIANGLES) return indices;
+    std::vector<std::uint32_t> triangles;
+    const std::size_t n = indices.size();
+    if (n < 3) return triangles;
+    triangles.reserve((n - 2) * 3);
+    for (std::size_t i = 0; i + 2 < n; ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const bool odd = i % 2 == 1;
+            triangles.insert(triangles.end(), {indices[i], indices[odd ? i + 2 : i + 1],
+                                               indices[odd ? i + 1 : i + 2]});
+        } else {
+            triangles.insert(triangles.end(), {indices[i + 1], indices[i + 2], indices[0]});
+        }
+    }
+    return triangles;
+}
+
+// "3 skins" / "1 skin"; empty for none.
+std::string counted(std::uint64_t n, std::string_view noun) {
+    if (n == 0) return "";
+    return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
+// One line naming everything in the file that the renderer does not use, so
+// nothing is dropped silently: "ignored: 2 skins, 1 animation, KHR_texture_transform".
+std::string ignored_summary(const tinygltf::Model& model, std::uint64_t orthographic_cameras) {
+    std::uint64_t morph_targets = 0, vertex_colours = 0, tangents = 0, extra_uv_sets = 0;
+    for (const auto& mesh : model.meshes) {
+        for (const auto& primitive : mesh.primitives) {
+            morph_targets += primitive.targets.size();
+            for (const auto& [name, accessor] : primitive.attributes) {
+                if (name.rfind("COLOR_", 0) == 0) ++vertex_colours;
+                if (name == "TANGENT") ++tangents;
+                if (name.rfind("TEXCOORD_", 0) == 0 && name != "TEXCOORD_0") ++extra_uv_sets;
+            }
+        }
+    }
+    std::uint64_t normal_maps = 0, occlusion_maps = 0, metal_rough_maps = 0, emissive_maps = 0,
+                  masked = 0;
+    for (const auto& material : model.materials) {
+        normal_maps += material.normalTexture.index >= 0;
+        occlusion_maps += material.occlusionTexture.index >= 0;
+        metal_rough_maps += material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
+        emissive_maps += material.emissiveTexture.index >= 0;
+        masked += material.alphaMode == "MASK";
+    }
+    std::vector<std::string> parts = {
+        counted(model.skins.size(), "skin"),
+        counted(model.animations.size(), "animation"),
+        counted(morph_targets, "morph target"),
+        counted(orthographic_cameras, "orthographic camera"),
+        counted(vertex_colours, "vertex colour set"),
+        counted(tangents, "tangent set"),
+        counted(extra_uv_sets, "extra texture coordinate set"),
+        counted(normal_maps, "normal texture"),
+        counted(occlusion_maps, "occlusion texture"),
+        counted(metal_rough_maps, "metallic-roughness texture"),
+        counted(emissive_maps, "emissive texture"),
+        counted(masked, "MASK material"),
+    };
+    for (const auto& extension : model.extensionsUsed)
+        if (extension != "KHR_materials_emissive_strength" && extension != "KHR_lights_punctual")
+            parts.push_back(extension);
+    std::string line;
+    for (const auto& part : parts) {
+        if (part.empty()) continue;
+        line += line.empty() ? "ignored: " : ", ";
+        line += part;
+    }
+    return line;
+}
+
+enum class GltfKind { none, json, binary };
+
+// GLB starts with the magic "glTF"; a JSON glTF is an object, so its first
+// non-blank byte (after an optional UTF-8 byte order mark) is '{'.
+GltfKind sniff_gltf(std::span<const std::uint8_t> bytes) {
+    if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) return GltfKind::binary;
+    std::size_t i = 0;
+    if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF) i = 3;
+    while (i < bytes.size() &&
+           (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r'))
+        ++i;
+    return i < bytes.size() && bytes[i] == '{' ? GltfKind::json : GltfKind::none;
+}
+
 std::uint64_t parse_limit_value(std::string_view name, std::string_view text) {
     std::uint64_t value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -415,10 +507,19 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
     std::map<int, int> texture_of_image;
     std::uint64_t triangles = 0;
 
+    std::uint64_t skipped_points_and_lines = 0;
+
     auto add_primitive = [&](const tinygltf::Primitive& primitive, const glm::mat4& transform) {
-        if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
-            reader.fail(
-                fmt::format("primitive mode {} is not supported (only triangles)", primitive.mode));
+        const int mode = primitive.mode == -1 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+            mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+            // Not surfaces: nothing for a G-buffer to hold. Counted for one warning.
+            ++skipped_points_and_lines;
+            return;
+        }
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            reader.fail(fmt::format("primitive mode {} is not supported", primitive.mode));
         }
         const auto position_attribute = primitive.attributes.find("POSITION");
         if (position_attribute == primitive.attributes.end())
@@ -445,10 +546,15 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             for (std::size_t i = 0; i < vertex_count; ++i)
                 local_indices[i] = static_cast<std::uint32_t>(i);
         }
+        local_indices = triangle_list(mode, std::move(local_indices));
         if (local_indices.size() % 3 != 0)
             reader.fail("triangle index count is not a multiple of 3");
+        if (primitive.material >= int(model.materials.size()))
+            reader.fail("material index out of range");
+        const bool double_sided =
+            primitive.material >= 0 && model.materials[std::size_t(primitive.material)].doubleSided;
         // Counted before any vertex is emitted, so an instanced mesh stops here.
-        triangles += local_indices.size() / 3;
+        triangles += (local_indices.size() / 3) * (double_sided ? 2 : 1);
         if (triangles > limits.triangles)
             reader.fail(fmt::format(
                 "the scene instantiates more than {} triangles (raise with --scene-limit "
@@ -462,7 +568,9 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         // Without normals every triangle gets its own flat-shaded vertices.
         const bool flat = !read_normal;
         auto& target = indices_by_material[primitive.material];
-        auto emit_vertex = [&](std::uint32_t i, glm::vec3 flat_normal) {
+        // The renderer culls back faces, so a double-sided material gets each
+        // triangle twice: the back copy wound the other way, its normal flipped.
+        auto emit_vertex = [&](std::uint32_t i, glm::vec3 flat_normal, bool back = false) {
             Vertex vertex;
             vertex.position =
                 glm::vec3(transform * glm::vec4(read_position(i, 0), read_position(i, 1),
@@ -473,6 +581,7 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                     : glm::normalize(normal_matrix * glm::vec3(read_normal(i, 0), read_normal(i, 1),
                                                                read_normal(i, 2)));
             if (!std::isfinite(vertex.normal.x)) vertex.normal = flat_normal;
+            if (back) vertex.normal = -vertex.normal;
             vertex.uv = read_uv ? glm::vec2(read_uv(i, 0), read_uv(i, 1)) : glm::vec2(0.0f);
             if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
                 !std::isfinite(vertex.position.z)) {
@@ -496,7 +605,98 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             emit_vertex(a, flat_normal);
             emit_vertex(b, flat_normal);
             emit_vertex(c, flat_normal);
+            if (double_sided) {
+                emit_vertex(a, flat_normal, true);
+                emit_vertex(c, flat_normal, true);
+                emit_vertex(b, flat_normal, true);
+            }
         }
+    };
+
+    // A glTF camera looks down its local -Z with +Y up. The renderer's camera
+    // has no roll and takes its aspect from the output size, so both are
+    // reported when the file's differ.
+    std::uint64_t orthographic_cameras = 0;
+    bool rolled_camera = false;
+    auto add_camera = [&](int camera_index, const std::string& node_name,
+                          const glm::mat4& transform) {
+        const auto& source = model.cameras[std::size_t(camera_index)];
+        if (source.type != "perspective") {
+            ++orthographic_cameras;
+            return;
+        }
+        const glm::vec3 forward = glm::mat3(transform) * glm::vec3(0, 0, -1);
+        const glm::vec3 up = glm::mat3(transform) * glm::vec3(0, 1, 0);
+        const float forward_length = glm::length(forward);
+        const double yfov = source.perspective.yfov;
+        const double znear = source.perspective.znear;
+        if (!(forward_length > 0.0f) || !std::isfinite(forward_length))
+            reader.fail(fmt::format("camera {} has a degenerate node transform", camera_index));
+        if (!(yfov > 0.0 && yfov < 3.14159) || !(znear > 0.0) || !std::isfinite(znear))
+            reader.fail(
+                fmt::format("camera {}: yfov must lie in (0, pi) and znear be > 0", camera_index));
+        const glm::vec3 f = forward / forward_length;
+        FileCamera file_camera;
+        file_camera.index = camera_index;
+        file_camera.name = source.name.empty() ? node_name : source.name;
+        file_camera.camera.position = glm::vec3(transform * glm::vec4(0, 0, 0, 1));
+        file_camera.camera.yaw = std::atan2(f.x, -f.z);
+        file_camera.camera.pitch = std::asin(std::clamp(f.y, -1.0f, 1.0f));
+        file_camera.camera.vertical_fov = float(yfov);
+        file_camera.camera.near_plane = float(znear);
+        const glm::vec3 right = glm::cross(f, glm::vec3(0, 1, 0));
+        if (glm::length(right) > 1e-6f) {
+            const glm::vec3 level_up = glm::normalize(glm::cross(glm::normalize(right), f));
+            if (glm::dot(glm::normalize(up), level_up) < 0.9999f) rolled_camera = true;
+        }
+        scene.file_cameras.push_back(file_camera);
+    };
+
+    // KHR_lights_punctual: the renderer has one shadowed key light, directional
+    // or spot. The first such light met walking the nodes is it; every other
+    // placement (point lights, further lights) is named as dropped. The
+    // extension's photometric units (lux, candela) become the renderer's
+    // radiometric ones through 683 lm/W, the luminous efficacy the
+    // extension's units are defined against.
+    bool have_key_light = false;
+    std::vector<std::string> dropped_lights;
+    auto add_light = [&](int light_index, const glm::mat4& transform) {
+        const auto& light = model.lights[std::size_t(light_index)];
+        const std::string label = fmt::format(
+            "{}{}", light_index, light.name.empty() ? "" : fmt::format(" '{}'", light.name));
+        if (light.type != "directional" && light.type != "spot") {
+            dropped_lights.push_back(fmt::format("{} ({})", label, light.type));
+            return;
+        }
+        if (have_key_light) {
+            dropped_lights.push_back(fmt::format("{} ({}, one key light only)", label, light.type));
+            return;
+        }
+        const glm::vec3 direction = glm::mat3(transform) * glm::vec3(0, 0, -1);
+        const float length = glm::length(direction);
+        if (!(length > 0.0f) || !std::isfinite(length))
+            reader.fail(fmt::format("light {} has a degenerate node transform", light_index));
+        if (!(light.intensity >= 0.0) || !std::isfinite(light.intensity))
+            reader.fail(
+                fmt::format("light {}: intensity must be a finite number >= 0", light_index));
+        KeyLight key;
+        key.kind = light.type == "spot" ? LightKind::spot : LightKind::directional;
+        key.direction = direction / length;
+        key.position = glm::vec3(transform * glm::vec4(0, 0, 0, 1));
+        key.colour = light.color.size() == 3
+                         ? glm::vec3(light.color[0], light.color[1], light.color[2])
+                         : glm::vec3(1.0f);
+        key.intensity = float(light.intensity / 683.0);
+        if (key.kind == LightKind::spot) {
+            const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+            if (!(inner >= 0.0 && inner < outer && outer <= 1.5707963268))
+                reader.fail(fmt::format(
+                    "light {}: spot cone angles need 0 <= inner < outer <= pi/2", light_index));
+            key.inner_cone = float(inner);
+            key.outer_cone = float(outer);
+        }
+        scene.key_light = key;
+        have_key_light = true;
     };
 
     // A node listed by several parents is visited once per path, so a few
@@ -515,6 +715,19 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                     limits.node_visits));
             const auto& node = model.nodes[std::size_t(node_index)];
             const glm::mat4 transform = parent * node_transform(node);
+            if (auto it = node.extensions.find("KHR_lights_punctual");
+                it != node.extensions.end() && it->second.Has("light")) {
+                const auto& value = it->second.Get("light");
+                const int light = value.IsInt() ? value.Get<int>() : -1;
+                if (light < 0 || light >= int(model.lights.size()))
+                    reader.fail("KHR_lights_punctual light index out of range");
+                add_light(light, transform);
+            }
+            if (node.camera >= 0) {
+                if (node.camera >= int(model.cameras.size()))
+                    reader.fail("camera index out of range");
+                add_camera(node.camera, node.name, transform);
+            }
             if (node.mesh >= 0) {
                 if (node.mesh >= int(model.meshes.size())) reader.fail("mesh index out of range");
                 for (const auto& primitive : model.meshes[std::size_t(node.mesh)].primitives)
@@ -536,8 +749,17 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                 add_primitive(primitive, glm::mat4(1.0f));
         }
     }
-    if (scene.vertices.empty()) reader.fail("contains no triangles");
+    if (scene.vertices.empty())
+        reader.fail(skipped_points_and_lines == 0
+                        ? std::string("contains no triangles")
+                        : fmt::format("contains no triangles (only {} point or line primitives)",
+                                      skipped_points_and_lines));
+    if (skipped_points_and_lines > 0)
+        scene.warnings.push_back(
+            fmt::format("skipped {} point or line primitive(s): they are not surfaces",
+                        skipped_points_and_lines));
 
+    std::uint64_t blended_materials = 0;
     for (auto& [material_index, indices] : indices_by_material) {
         Material material;
         if (material_index >= 0) {
@@ -551,6 +773,18 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                 material.emissive = glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1],
                                               source.emissiveFactor[2]);
             }
+            // KHR_materials_emissive_strength scales the factor past 1.
+            if (auto it = source.extensions.find("KHR_materials_emissive_strength");
+                it != source.extensions.end() && it->second.Has("emissiveStrength")) {
+                const auto& value = it->second.Get("emissiveStrength");
+                const double strength = value.IsNumber() ? value.GetNumberAsDouble() : -1.0;
+                if (!(strength >= 0.0) || !std::isfinite(strength))
+                    reader.fail(
+                        fmt::format("material {}: emissiveStrength must be a finite number >= 0",
+                                    material_index));
+                material.emissive *= float(strength);
+            }
+            if (source.alphaMode == "BLEND") ++blended_materials;
             const int texture_index = source.pbrMetallicRoughness.baseColorTexture.index;
             if (texture_index >= 0) {
                 if (texture_index >= int(model.textures.size()))
@@ -575,6 +809,10 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         scene.batches.push_back(batch);
     }
 
+    if (blended_materials > 0)
+        scene.warnings.push_back(fmt::format(
+            "{} material(s) with alphaMode BLEND are rendered opaque", blended_materials));
+
     scene.bounds = compute_bounds(scene.vertices);
     const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
     const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
@@ -586,6 +824,15 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
     camera.pitch = glm::radians(-15.0f);
     camera.position = centre - camera_forward(camera) * distance;
     scene.default_camera = camera;
+    if (!scene.file_cameras.empty()) {
+        scene.default_camera = scene.file_cameras.front().camera;
+        if (rolled_camera)
+            scene.warnings.push_back("camera roll is ignored (the view is levelled)");
+    } else {
+        scene.warnings.push_back("the file has no perspective camera; using a fitted view");
+    }
+    if (const std::string ignored = ignored_summary(model, orthographic_cameras); !ignored.empty())
+        scene.warnings.push_back(ignored);
     scene.camera_path.frames_per_key = 30;
     for (int key = 0; key < 4; ++key) {  // orbit around the centre
         Camera orbit = camera;
@@ -593,9 +840,16 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         orbit.position = centre - camera_forward(orbit) * distance;
         scene.camera_path.keys.push_back(orbit);
     }
-    scene.key_light.kind = LightKind::directional;
-    scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-    scene.key_light.intensity = 3.0f;
+    if (!have_key_light) {
+        scene.key_light.kind = LightKind::directional;
+        scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+        scene.key_light.intensity = 3.0f;
+    }
+    if (!dropped_lights.empty()) {
+        std::string list;
+        for (const auto& light : dropped_lights) list += (list.empty() ? "" : ", ") + light;
+        scene.warnings.push_back("dropped lights: " + list);
+    }
     scene.ambient = glm::vec3(0.05f);
     scene.background = glm::vec3(0.2f, 0.22f, 0.25f);
     return scene;
@@ -632,10 +886,6 @@ Scene load_gltf_scene(const fs::path& path, const SceneLimits& limits) {
         throw InputError(fmt::format("scene file '{}' does not exist", path.string()));
     if (!fs::is_regular_file(path))
         throw InputError(fmt::format("scene file '{}' is not a regular file", path.string()));
-    const std::string extension = path.extension().string();
-    if (extension != ".gltf" && extension != ".glb")
-        throw InputError(
-            fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
     const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
     tinygltf::Model model;
     {
@@ -650,10 +900,20 @@ Scene load_gltf_scene(const fs::path& path, const SceneLimits& limits) {
         std::ifstream stream(path, std::ios::binary);
         if (!stream.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
             throw InputError(fmt::format("cannot read scene file '{}'", path.string()));
-        model =
-            parse_gltf(bytes, extension == ".glb", path.string(), directory.string(), true, limits);
+        // The content decides, not the name: a .glb holding JSON is read as JSON.
+        const GltfKind kind = sniff_gltf(bytes);
+        if (kind == GltfKind::none)
+            throw InputError(
+                fmt::format("scene file '{}' is not a glTF file (neither GLB magic "
+                            "nor a JSON object)",
+                            path.string()));
+        model = parse_gltf(bytes, kind == GltfKind::binary, path.string(), directory.string(), true,
+                           limits);
     }  // the file's bytes are freed before the scene is built
-    return build_scene(model, path.string(), path.stem().string(), limits);
+    Scene scene = build_scene(model, path.string(), path.stem().string(), limits);
+    for (const auto& warning : scene.warnings)
+        fmt::print(stderr, "warning: glTF file '{}': {}\n", path.string(), warning);
+    return scene;
 }
 
 Scene load_gltf_scene_from_memory(std::span<const std::uint8_t> bytes, bool binary,
@@ -662,14 +922,37 @@ Scene load_gltf_scene_from_memory(std::span<const std::uint8_t> bytes, bool bina
     return build_scene(model, std::string(name), std::string(name), limits);
 }
 
+Camera find_file_camera(const Scene& scene, std::string_view name_or_index) {
+    for (const auto& file_camera : scene.file_cameras)
+        if (file_camera.name == name_or_index) return file_camera.camera;
+    int index = -1;
+    const auto [end, error] =
+        std::from_chars(name_or_index.data(), name_or_index.data() + name_or_index.size(), index);
+    if (error == std::errc() && end == name_or_index.data() + name_or_index.size()) {
+        for (const auto& file_camera : scene.file_cameras)
+            if (file_camera.index == index) return file_camera.camera;
+    }
+    std::string known;
+    for (const auto& file_camera : scene.file_cameras)
+        known += fmt::format("{}{} '{}'", known.empty() ? "" : ", ", file_camera.index,
+                             file_camera.name);
+    throw InputError(fmt::format("--camera '{}': scene '{}' has no such perspective camera ({})",
+                                 name_or_index, scene.name,
+                                 known.empty() ? "it has none" : "it has " + known));
+}
+
 Scene load_scene(std::string_view name_or_path, const SceneLimits& limits) {
     const fs::path path(name_or_path);
-    const std::string extension = path.extension().string();
-    if (extension == ".gltf" || extension == ".glb") return load_gltf_scene(path, limits);
-    if (extension.empty()) return make_builtin_scene(name_or_path);
-    if (fs::exists(path))
-        throw InputError(
-            fmt::format("scene file '{}' is not glTF (expected .gltf or .glb)", path.string()));
+    // A built-in name wins over a file of that name in the working directory.
+    for (const auto& builtin : builtin_scene_names())
+        if (name_or_path == builtin) return make_builtin_scene(name_or_path);
+    if (name_or_path.substr(0, 4) == "ref-") return make_builtin_scene(name_or_path);
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    // Named like glTF, or an existing file of any name: its content decides.
+    if (extension == ".gltf" || extension == ".glb" || fs::exists(path))
+        return load_gltf_scene(path, limits);
     return make_builtin_scene(name_or_path);
 }
 
