@@ -13,5 +13,5 @@ cat out/tau_table.md
 rm -f build/generated/*.glsl build/generated/*.hpp
 cmake --build build --target spiral_generated_headers
 echo "generated headers in build/generated:" && ls build/generated
-build/apps/deepgi/deepgi --headless --scene cornell --size 1280x720 --frames 4 --output out/demo.png
+build/apps/deepgi/deepgi --headless --scene cornell --size 1280x720 --frames 16 --output out/demo.png
 echo "rendered out/demo.png"
