@@ -25,7 +25,8 @@ std::uint64_t estimate_frame_bytes(const RenderSettings& settings) {
 
 void check_frame_limits(const RenderSettings& settings, std::uint64_t max_bytes) {
     const FrameLayout layout = frame_layout(settings);
-    if (layout.internal_width > limits::max_internal_side || layout.internal_height > limits::max_internal_side) {
+    if (layout.internal_width > limits::max_internal_side ||
+        layout.internal_height > limits::max_internal_side) {
         throw InputError(fmt::format(
             "--size {}x{} with --guard-band {} needs internal buffers of {}x{}, above the GL "
             "limit of {} per side (use a smaller size or guard band)",
