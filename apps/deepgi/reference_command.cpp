@@ -149,6 +149,7 @@ int run(const ReferenceOptions& options) {
         deepgi::write_pfm(output / "reference-irradiance-standard-error.pfm",
                           images.irradiance_standard_error);
         deepgi::write_pfm(output / "reference-irradiance-rays.pfm", images.irradiance_rays);
+        deepgi::write_pfm(output / "reference-direct-radiance.pfm", images.direct_radiance);
         // Errors relative to each pixel's E, over pixels that receive light.
         double ray_total = 0.0, mean_e = 0.0, mean_error = 0.0, max_relative = 0.0;
         long long surface = 0, lit = 0;

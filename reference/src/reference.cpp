@@ -252,8 +252,10 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
         out.irradiance = image(3, 0.0f);
         out.irradiance_standard_error = image(3, 0.0f);
         out.irradiance_rays = image(1, 0.0f);
+        out.direct_radiance = image(3, 0.0f);
     }
     std::vector<glm::vec3> positions(pixels), normals(pixels);
+    std::vector<RayScene::Hit> first_hits(pixels);
 
     const int thread_count = settings.threads > 0
                                  ? settings.threads
@@ -299,6 +301,7 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                 out.depth_layer0.pixels[i] = first.distance;
                 positions[i] = eye + direction * first.distance;
                 normals[i] = first.normal;
+                first_hits[i] = first;
                 const RayScene::Hit second = scene.intersect_front(
                     eye, direction, first.distance + render.min_separation, 1e30f);
                 if (second.hit) out.depth_layer1.pixels[i] = second.distance;
@@ -369,6 +372,11 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                             float(s.standard_error[c]);
                     }
                     out.irradiance_rays.pixels[i] = float(s.rays);
+                    const glm::dvec3 direct =
+                        direct_outgoing_radiance(scene, first_hits[i], positions[i]) -
+                        glm::dvec3(scene.surface(first_hits[i]).emissive);
+                    for (int c = 0; c < 3; ++c)
+                        out.direct_radiance.pixels[3 * i + c] = float(direct[c]);
                 }
             },
             true);

@@ -6,14 +6,17 @@
 // image (one frame's raw gather, the temporally filtered E, the blurred E):
 // mean absolute error, bias and the relative error sum|E - E_ref| / sum E_ref,
 // averaged over the three channels; also the share of pixels the gather left
-// without a sample (confidence 0).
+// without a sample (confidence 0). First it checks the light model: the dumped
+// direct light against the traced direct light at the same points.
 #include "deepgi/image_io.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
     if (argc != 4) {
@@ -54,26 +57,73 @@ int main(int argc, char** argv) {
                 }
             }
         const double n = double(std::max(count, 1LL)) * 3.0;
+
+        // The light model first: the direct light pass against the traced
+        // direct light at the same points (they differ where the shadow map
+        // and its filtering differ from an exact shadow ray).
+        {
+            const auto raster_direct = deepgi::read_pfm(dump / "direct_light-radiance-layer0.pfm");
+            const auto traced_direct =
+                deepgi::read_pfm(reference / "reference-direct-radiance.pfm");
+            std::vector<double> relative;
+            double sum_abs = 0.0, sum_truth = 0.0;
+            for (int y = guard; y < truth.height - guard; ++y)
+                for (int x = guard; x < truth.width - guard; ++x) {
+                    if (!compared(x, y)) continue;
+                    double a = 0.0, b = 0.0;
+                    for (int c = 0; c < 3; ++c) {
+                        a += raster_direct.at(x, y, c);
+                        b += traced_direct.at(x, y, c);
+                    }
+                    sum_abs += std::abs(a - b);
+                    sum_truth += b;
+                    if (b > 0.0) relative.push_back(std::abs(a - b) / b);
+                }
+            std::sort(relative.begin(), relative.end());
+            const auto within = std::lower_bound(relative.begin(), relative.end(), 0.01);
+            fmt::print(
+                "direct light: relative difference median {:.2g}, {:.1f}% of lit pixels within "
+                "1%, sum|difference| / sum = {:.4f}\n",
+                relative.empty() ? 0.0 : relative[relative.size() / 2],
+                relative.empty()
+                    ? 0.0
+                    : 100.0 * double(within - relative.begin()) / double(relative.size()),
+                sum_truth > 0.0 ? sum_abs / sum_truth : 0.0);
+        }
         fmt::print(
             "reference: {} pixels, mean E {:.4f}, mean standard error {:.4f}; gather without a "
             "sample at {} pixels\n",
             count, truth_sum / n, truth_error_sum / n, empty);
-        for (const char* name :
-             {"radiosity-raw-layer0", "radiosity-irradiance-layer0", "radiosity-blurred"}) {
-            const auto estimate = deepgi::read_pfm(dump / (std::string(name) + ".pfm"));
+        // The last row scales the filtered E by the gather's confidence
+        // (used samples / all samples): the gather normalised by every
+        // sample instead of the used ones, the part of E that compose keeps.
+        struct Row {
+            const char* label;
+            const char* file;
+            bool times_confidence;
+        };
+        for (const Row row :
+             {Row{"radiosity-raw-layer0", "radiosity-raw-layer0", false},
+              Row{"radiosity-irradiance-layer0", "radiosity-irradiance-layer0", false},
+              Row{"radiosity-blurred", "radiosity-blurred", false},
+              Row{"radiosity-irradiance-layer0 x confidence", "radiosity-irradiance-layer0",
+                  true}}) {
+            const auto estimate = deepgi::read_pfm(dump / (std::string(row.file) + ".pfm"));
             double sum_abs = 0.0, sum = 0.0;
             for (int y = guard; y < truth.height - guard; ++y)
                 for (int x = guard; x < truth.width - guard; ++x) {
                     if (!compared(x, y)) continue;
+                    const double scale = row.times_confidence ? double(confidence.at(x, y)) : 1.0;
                     for (int c = 0; c < 3; ++c) {
-                        const double error = double(estimate.at(x, y, c)) - truth.at(x, y, c);
+                        const double error =
+                            scale * double(estimate.at(x, y, c)) - truth.at(x, y, c);
                         sum_abs += std::abs(error);
                         sum += error;
                     }
                 }
             fmt::print(
                 "{}: MAE {:.4f}, bias {:+.4f}, relative error {:.3f}, relative bias {:+.3f}\n",
-                name, sum_abs / n, sum / n, truth_sum > 0.0 ? sum_abs / truth_sum : 0.0,
+                row.label, sum_abs / n, sum / n, truth_sum > 0.0 ? sum_abs / truth_sum : 0.0,
                 truth_sum > 0.0 ? sum / truth_sum : 0.0);
         }
     } catch (const std::exception& error) {

@@ -152,6 +152,9 @@ struct ReferenceImages {
     FloatImage irradiance;                 // RGB one-bounce E (0 on sky)
     FloatImage irradiance_standard_error;  // RGB, per channel
     FloatImage irradiance_rays;            // rays spent per pixel
+    // RGB direct light reflected at layer 0 (emissive excluded): what the
+    // direct light pass writes, with an exact shadow ray for the shadow map.
+    FloatImage direct_radiance;
 };
 
 // The camera ray through the centre of internal pixel (x, y), exactly as the
