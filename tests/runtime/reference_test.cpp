@@ -179,7 +179,8 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     fs::remove_all(directory);
     const std::string command = std::string(DEEPGI_EXECUTABLE) +
                                 " reference --scene ref-slab --size 16x9 --rays 256 "
-                                "--min-rays 256 --threads 2 --output " +
+                                "--min-rays 256 --irradiance-rays 256 --irradiance-min-rays 256 "
+                                "--radiosity-radius 0.7 --threads 2 --output " +
                                 directory.string() + " > /dev/null";
     REQUIRE(std::system(command.c_str()) == 0);
     const auto visibility = deepgi::read_pfm(directory / "reference-ao-visibility.pfm");
@@ -188,18 +189,31 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     settings.render.width = 16;
     settings.render.height = 9;
     settings.rays.min_rays = settings.rays.max_rays = 256;
+    settings.irradiance = true;
+    settings.irradiance_rays.min_rays = settings.irradiance_rays.max_rays = 256;
+    settings.radiosity_radius = 0.7f;
     const deepgi::Scene scene = deepgi::make_builtin_scene("ref-slab");
     const deepgi::RayScene rays(scene);
     const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
     REQUIRE(visibility.pixels == images.ambient_visibility.pixels);
-    for (const char* name : {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
-                             "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
-                             "reference-ao-standard-error.pfm", "reference-ao-rays.pfm"})
+    const auto irradiance = deepgi::read_pfm(directory / "reference-irradiance.pfm");
+    REQUIRE(irradiance.channels == 3);
+    REQUIRE(irradiance.pixels == images.irradiance.pixels);
+    REQUIRE(deepgi::read_pfm(directory / "reference-direct-radiance.pfm").pixels ==
+            images.direct_radiance.pixels);
+    for (const char* name :
+         {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
+          "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
+          "reference-ao-standard-error.pfm", "reference-ao-rays.pfm",
+          "reference-irradiance-standard-error.pfm", "reference-irradiance-rays.pfm"})
         REQUIRE(fs::exists(directory / name));
     fs::remove_all(directory);
 
-    for (const char* arguments : {"--size 16x --output", "--size 16x9 --rays 0 --output",
-                                  "--size 16x9 --scene nosuch --output"}) {
+    for (const char* arguments :
+         {"--size 16x --output", "--size 16x9 --rays 0 --output",
+          "--size 16x9 --scene nosuch --output", "--size 16x9 --no-ao --no-irradiance --output",
+          "--size 16x9 --radiosity-radius 0 --output",
+          "--size 16x9 --irradiance-rays 0 --output"}) {
         const std::string bad = std::string(DEEPGI_EXECUTABLE) + " reference " + arguments + " " +
                                 directory.string() + " 2> /dev/null";
         const int status = std::system(bad.c_str());
