@@ -1,7 +1,8 @@
 #pragma once
-// Ray-traced ground truth (Embree 3, CPU) for the deep SAO pass: the same
-// camera, guard band and pixel grid as layer 0 of the deep G-buffer, and the
-// ambient visibility that deep SAO estimates. No GL here; only the scene, the
+// Ray-traced ground truth (Embree 3, CPU) for deep SAO and deep radiosity: the
+// same camera, guard band and pixel grid as layer 0 of the deep G-buffer, the
+// ambient visibility that deep SAO estimates, and the one-bounce irradiance
+// that the radiosity gather estimates. No GL here; only the scene, the
 // camera and the frame layout of the runtime. Definitions: docs/reference.md.
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
