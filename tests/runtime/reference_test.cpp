@@ -454,6 +454,7 @@ TEST_CASE("reference: irradiance images do not depend on the thread count", "[re
     REQUIRE(one.irradiance.pixels == three.irradiance.pixels);
     REQUIRE(one.irradiance_standard_error.pixels == three.irradiance_standard_error.pixels);
     REQUIRE(one.irradiance_rays.pixels == three.irradiance_rays.pixels);
+    REQUIRE(one.direct_radiance.pixels == three.direct_radiance.pixels);
     // The lit wall bounces red onto the floor: not two blank images.
     float reddest = 0.0f;
     for (std::size_t i = 0; i < one.irradiance.pixels.size(); i += 3)
