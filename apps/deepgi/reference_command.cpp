@@ -1,5 +1,6 @@
 // `deepgi reference`: ray-traces the ambient visibility that deep SAO
-// estimates, on the same guard-banded pixel grid as `deepgi --headless
+// estimates and the one-bounce irradiance that deep radiosity gathers, on the same guard-banded
+// pixel grid as `deepgi --headless
 // --dump`, and writes it as PFM images (docs/reference.md).
 #include "reference_command.hpp"
 
@@ -36,6 +37,12 @@ struct ReferenceOptions {
     float radius = 0.5f;
     float guard_band = 0.1f;
     float min_separation = 0.5f;
+    bool no_ao = false;
+    bool no_irradiance = false;
+    float radiosity_radius = 1.0f;
+    int irradiance_rays = 16384;
+    int irradiance_min_rays = 1024;
+    double irradiance_target_error = 0.01;
 };
 
 void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
@@ -62,6 +69,14 @@ int run(const ReferenceOptions& options) {
     if (!(options.min_separation >= 0.0f) || !std::isfinite(options.min_separation))
         throw deepgi::InputError("--min-separation must be a finite number of metres >= 0");
     if (!(options.target_error >= 0.0)) throw deepgi::InputError("--target-error must be >= 0");
+    if (options.irradiance_rays < 1)
+        throw deepgi::InputError("--irradiance-rays must be at least 1");
+    if (!(options.radiosity_radius > 0.0f) || !std::isfinite(options.radiosity_radius))
+        throw deepgi::InputError("--radiosity-radius must be a finite number of metres > 0");
+    if (!(options.irradiance_target_error >= 0.0))
+        throw deepgi::InputError("--irradiance-target-error must be >= 0");
+    if (options.no_ao && options.no_irradiance)
+        throw deepgi::InputError("--no-ao and --no-irradiance leave nothing to trace");
     const fs::path output = options.output;
     if (fs::exists(output) && !fs::is_directory(output))
         throw deepgi::InputError(fmt::format("--output '{}' is not a directory", output.string()));
@@ -76,6 +91,13 @@ int run(const ReferenceOptions& options) {
     settings.rays.max_rays = options.rays;
     settings.rays.min_rays = std::min(options.min_rays, options.rays);
     settings.rays.target_error = options.target_error;
+    settings.ambient_visibility = !options.no_ao;
+    settings.irradiance = !options.no_irradiance;
+    settings.radiosity_radius = options.radiosity_radius;
+    settings.irradiance_rays.max_rays = options.irradiance_rays;
+    settings.irradiance_rays.min_rays =
+        std::min(options.irradiance_min_rays, options.irradiance_rays);
+    settings.irradiance_rays.target_relative_error = options.irradiance_target_error;
     settings.seed = options.seed;
     settings.threads = options.threads;
     // A progress bar only where someone watches; logs stay clean.
@@ -101,25 +123,59 @@ int run(const ReferenceOptions& options) {
     fs::create_directories(output);
     deepgi::write_pfm(output / "reference-depth-layer0.pfm", images.depth_layer0);
     deepgi::write_pfm(output / "reference-depth-layer1.pfm", images.depth_layer1);
-    deepgi::write_pfm(output / "reference-ao-visibility.pfm", images.ambient_visibility);
-    deepgi::write_pfm(output / "reference-ao-hit-visibility.pfm", images.hit_visibility);
-    deepgi::write_pfm(output / "reference-ao-occlusion-split.pfm", images.occlusion_split);
-    deepgi::write_pfm(output / "reference-ao-standard-error.pfm", images.standard_error);
-    deepgi::write_pfm(output / "reference-ao-rays.pfm", images.rays);
+    if (settings.ambient_visibility) {
+        deepgi::write_pfm(output / "reference-ao-visibility.pfm", images.ambient_visibility);
+        deepgi::write_pfm(output / "reference-ao-hit-visibility.pfm", images.hit_visibility);
+        deepgi::write_pfm(output / "reference-ao-occlusion-split.pfm", images.occlusion_split);
+        deepgi::write_pfm(output / "reference-ao-standard-error.pfm", images.standard_error);
+        deepgi::write_pfm(output / "reference-ao-rays.pfm", images.rays);
 
-    double max_error = 0.0, ray_total = 0.0;
-    long long surface = 0, above = 0;
-    for (std::size_t i = 0; i < images.standard_error.pixels.size(); ++i) {
-        if (images.depth_layer0.pixels[i] <= 0.0f) continue;
-        ++surface;
-        max_error = std::max(max_error, double(images.standard_error.pixels[i]));
-        ray_total += images.rays.pixels[i];
-        if (images.standard_error.pixels[i] >= 0.005f) ++above;
+        double max_error = 0.0, ray_total = 0.0;
+        long long surface = 0, above = 0;
+        for (std::size_t i = 0; i < images.standard_error.pixels.size(); ++i) {
+            if (images.depth_layer0.pixels[i] <= 0.0f) continue;
+            ++surface;
+            max_error = std::max(max_error, double(images.standard_error.pixels[i]));
+            ray_total += images.rays.pixels[i];
+            if (images.standard_error.pixels[i] >= 0.005f) ++above;
+        }
+        fmt::print(
+            "reference: {} pixels on surfaces, {:.0f} rays per pixel on average, standard error "
+            "max {:.4f} ({} pixels at or above 0.005), {:.1f} s\n",
+            surface, surface ? ray_total / double(surface) : 0.0, max_error, above, seconds);
     }
-    fmt::print(
-        "reference: {} pixels on surfaces, {:.0f} rays per pixel on average, standard error max "
-        "{:.4f} ({} pixels at or above 0.005), {:.1f} s\n",
-        surface, surface ? ray_total / double(surface) : 0.0, max_error, above, seconds);
+    if (settings.irradiance) {
+        deepgi::write_pfm(output / "reference-irradiance.pfm", images.irradiance);
+        deepgi::write_pfm(output / "reference-irradiance-standard-error.pfm",
+                          images.irradiance_standard_error);
+        deepgi::write_pfm(output / "reference-irradiance-rays.pfm", images.irradiance_rays);
+        deepgi::write_pfm(output / "reference-direct-radiance.pfm", images.direct_radiance);
+        // Errors relative to each pixel's E, over pixels that receive light.
+        double ray_total = 0.0, mean_e = 0.0, mean_error = 0.0, max_relative = 0.0;
+        long long surface = 0, lit = 0;
+        for (std::size_t i = 0; i < images.irradiance_rays.pixels.size(); ++i) {
+            if (images.depth_layer0.pixels[i] <= 0.0f) continue;
+            ++surface;
+            ray_total += images.irradiance_rays.pixels[i];
+            double e = 0.0, error = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                e = std::max(e, double(images.irradiance.pixels[3 * i + c]));
+                error = std::max(error, double(images.irradiance_standard_error.pixels[3 * i + c]));
+            }
+            mean_e += e;
+            mean_error += error;
+            if (e > 0.0) {
+                ++lit;
+                max_relative = std::max(max_relative, error / e);
+            }
+        }
+        const double n = double(std::max(surface, 1LL));
+        fmt::print(
+            "reference irradiance: {} pixels on surfaces, {:.0f} rays per pixel on average, mean "
+            "E (largest channel) {:.4g}, mean standard error {:.4g}, largest relative standard "
+            "error {:.4f} over {} pixels with E > 0, {:.1f} s in all\n",
+            surface, ray_total / n, mean_e / n, mean_error / n, max_relative, lit, seconds);
+    }
     return 0;
 }
 
@@ -127,7 +183,9 @@ int run(const ReferenceOptions& options) {
 
 int run_reference_command(int argc, char** argv) {
     ReferenceOptions options;
-    CLI::App app{"deepgi reference: ray-traced ambient visibility on layer 0's pixel grid"};
+    CLI::App app{
+        "deepgi reference: ray-traced ambient visibility and one-bounce irradiance on layer 0's "
+        "pixel grid"};
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
     app.add_option("--size", options.size, "Viewport size WIDTHxHEIGHT (guard band added)");
     app.add_option("--output", options.output, "Directory for the PFM images");
@@ -140,6 +198,16 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--ao-radius", options.radius, "AO radius r (m), as deepgi --ao-radius");
     app.add_option("--guard-band", options.guard_band, "Guard band, fraction of the height");
     app.add_option("--min-separation", options.min_separation, "Layer-1 separation dz (m)");
+    app.add_flag("--no-ao", options.no_ao, "Do not trace ambient visibility");
+    app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
+    app.add_option("--radiosity-radius", options.radiosity_radius,
+                   "Radiosity radius (m), as deepgi --radiosity-radius");
+    app.add_option("--irradiance-rays", options.irradiance_rays, "Most irradiance rays per pixel");
+    app.add_option("--irradiance-min-rays", options.irradiance_min_rays,
+                   "Fewest irradiance rays per pixel");
+    app.add_option("--irradiance-target-error", options.irradiance_target_error,
+                   "Stop adding irradiance rays once every channel's standard error is below "
+                   "this fraction of E (or 0.002)");
     try {
         app.parse(argc - 1, argv + 1);
     } catch (const CLI::CallForHelp&) {

@@ -17,6 +17,13 @@ struct RayScene::State {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<glm::vec3> face_normals;  // unit, counter-clockwise side
+    // Shading inputs, as the G-buffer pass reads them.
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    std::vector<int> triangle_material;  // -1: the default material
+    std::vector<Material> materials;
+    std::vector<TextureImage> textures;
+    KeyLight key_light;
     ~State() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -65,6 +72,19 @@ RayScene::RayScene(const Scene& scene) : state_(std::make_unique<State>()) {
         hi = glm::max(hi, glm::max(p0, glm::max(p1, p2)));
     }
     if (triangles > 0) scale_ = std::max(glm::length(hi - lo), 1e-6f);
+    s.vertices = scene.vertices;
+    s.indices.assign(scene.indices.begin(), scene.indices.begin() + 3 * triangles);
+    s.materials = scene.materials;
+    s.textures = scene.textures;
+    s.key_light = scene.key_light;
+    s.triangle_material.assign(triangles, -1);
+    for (const DrawBatch& batch : scene.batches) {
+        if (batch.material < 0 || std::size_t(batch.material) >= scene.materials.size()) continue;
+        const std::size_t first = batch.first_index / 3;
+        const std::size_t last = std::min<std::size_t>(
+            triangles, (std::size_t(batch.first_index) + batch.index_count) / 3);
+        for (std::size_t t = first; t < last; ++t) s.triangle_material[t] = batch.material;
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(s.scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -96,7 +116,79 @@ RayScene::Hit RayScene::intersect(glm::vec3 origin, glm::vec3 direction, float t
     hit.distance = query.ray.tfar;
     hit.primitive = query.hit.primID;
     hit.normal = state_->face_normals[query.hit.primID];
+    hit.barycentric = {query.hit.u, query.hit.v};
     return hit;
+}
+
+namespace {
+
+float srgb_decode(std::uint8_t encoded) {
+    const float c = float(encoded) / 255.0f;
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+}  // namespace
+
+RayScene::Surface RayScene::surface(const Hit& hit) const {
+    const State& s = *state_;
+    Surface result;
+    result.shading_normal = hit.normal;
+    result.albedo = glm::vec3(1.0f);
+    if (!hit.hit || hit.primitive >= s.triangle_material.size()) return result;
+    const Vertex& a = s.vertices[s.indices[3 * hit.primitive]];
+    const Vertex& b = s.vertices[s.indices[3 * hit.primitive + 1]];
+    const Vertex& c = s.vertices[s.indices[3 * hit.primitive + 2]];
+    const float u = hit.barycentric.x, v = hit.barycentric.y, w = 1.0f - u - v;
+    const glm::vec3 n = a.normal * w + b.normal * u + c.normal * v;
+    const float length = glm::length(n);
+    if (length > 0.0f && std::isfinite(length)) result.shading_normal = n / length;
+    const int m = s.triangle_material[hit.primitive];
+    if (m < 0) return result;
+    const Material& material = s.materials[std::size_t(m)];
+    result.albedo = glm::vec3(material.base_colour);
+    result.emissive = material.emissive;
+    if (material.base_colour_texture >= 0 &&
+        std::size_t(material.base_colour_texture) < s.textures.size()) {
+        // Nearest texel with repeat wrapping; rows are stored top to bottom
+        // and uv (0, 0) is the top-left corner, as the G-buffer samples them.
+        const TextureImage& image = s.textures[std::size_t(material.base_colour_texture)];
+        if (image.width > 0 && image.height > 0) {
+            const glm::vec2 uv = a.uv * w + b.uv * u + c.uv * v;
+            const auto wrap = [](float t, int size) {
+                const int i = int(std::floor((t - std::floor(t)) * float(size)));
+                return std::clamp(i, 0, size - 1);
+            };
+            const std::size_t texel = (std::size_t(wrap(uv.y, image.height)) * image.width +
+                                       std::size_t(wrap(uv.x, image.width))) *
+                                      4;
+            result.albedo *=
+                glm::vec3(srgb_decode(image.rgba8[texel]), srgb_decode(image.rgba8[texel + 1]),
+                          srgb_decode(image.rgba8[texel + 2]));
+        }
+    }
+    return result;
+}
+
+const KeyLight& RayScene::key_light() const {
+    return state_->key_light;
+}
+
+bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = t_near;
+    ray.tfar = t_far;
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(state_->scene, &context, &ray);
+    // Embree marks an occluded ray by setting tfar to -infinity.
+    return ray.tfar < 0.0f;
 }
 
 RayScene::Hit RayScene::intersect_front(glm::vec3 origin, glm::vec3 direction, float t_near,

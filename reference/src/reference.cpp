@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 namespace deepgi {
@@ -107,6 +108,103 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
     return result;
 }
 
+glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& hit,
+                                    glm::vec3 position) {
+    const RayScene::Surface surface = scene.surface(hit);
+    glm::dvec3 radiance(surface.emissive);
+    if (surface.albedo == glm::vec3(0.0f)) return radiance;
+    // The key light as light_irradiance() in lighting.glsl, in world space.
+    const KeyLight& light = scene.key_light();
+    const glm::vec3 axis = glm::normalize(light.direction);
+    glm::vec3 to_light;
+    glm::vec3 incident = light.colour * light.intensity;
+    float shadow_far = std::numeric_limits<float>::infinity();
+    if (light.kind == LightKind::directional) {
+        to_light = -axis;
+    } else {
+        const glm::vec3 offset = light.position - position;
+        const float distance_squared = std::max(glm::dot(offset, offset), 1e-4f);
+        to_light = offset / std::sqrt(distance_squared);
+        shadow_far = glm::length(offset);
+        // smoothstep(cos outer, cos inner, cos angle), as in GLSL.
+        const float edge0 = std::cos(light.outer_cone), edge1 = std::cos(light.inner_cone);
+        const float cos_angle = glm::dot(-to_light, axis);
+        float cone;
+        if (edge1 != edge0) {
+            const float t = std::clamp((cos_angle - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+            cone = t * t * (3.0f - 2.0f * t);
+        } else {
+            cone = cos_angle >= edge0 ? 1.0f : 0.0f;
+        }
+        incident *= cone / distance_squared;
+    }
+    const float cosine = glm::dot(surface.shading_normal, to_light);
+    if (!(cosine > 0.0f) || incident == glm::vec3(0.0f)) return radiance;
+    // Shadow ray from just off the side the surface was hit on; the renderer
+    // filters a shadow map here, the reference takes the exact visibility.
+    const glm::vec3 side = glm::dot(hit.normal, to_light) >= 0.0f ? hit.normal : -hit.normal;
+    const float offset =
+        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
+        1e-6f * scene.scale();
+    const glm::vec3 origin = position + side * offset;
+    if (scene.occluded(origin, to_light, 0.0f, shadow_far)) return radiance;
+    return radiance + glm::dvec3(surface.albedo) / pi * glm::dvec3(incident) * double(cosine);
+}
+
+IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
+                               float radius, const IrradianceRayBudget& budget,
+                               std::uint64_t seed) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
+    glm::dvec3 t, b;
+    tangent_frame(n, t, b);
+    // The same offset as for ambient visibility.
+    const float offset =
+        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
+        1e-6f * radius;
+    const glm::vec3 origin = position + glm::vec3(n) * offset;
+
+    Random random{seed};
+    glm::dvec3 sum(0.0), sum_squares(0.0);
+    long long rays = 0;
+    const int batch = std::max(1, budget.batch);
+    auto standard_error = [&](double count) {
+        const glm::dvec3 mean = sum / count;
+        const glm::dvec3 variance = glm::max(glm::dvec3(0.0), sum_squares / count - mean * mean) *
+                                    (count / std::max(1.0, count - 1.0));
+        return pi * glm::sqrt(variance / count);
+    };
+    while (rays < budget.max_rays) {
+        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++rays) {
+            const double u1 = random.uniform(), u2 = random.uniform();
+            const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
+            const double z = std::sqrt(std::max(0.0, 1.0 - u1));
+            const glm::vec3 w(t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z);
+            const RayScene::Hit hit = scene.intersect(origin, w, 0.0f, radius);
+            // Nothing within the radius, or the back of a one-sided surface:
+            // the gather reads neither, so neither sends light here.
+            if (!hit.hit || !(glm::dot(hit.normal, w) < 0.0f)) continue;
+            const glm::dvec3 radiance =
+                direct_outgoing_radiance(scene, hit, origin + w * hit.distance);
+            sum += radiance;
+            sum_squares += radiance * radiance;
+        }
+        if (rays >= budget.min_rays) {
+            const glm::dvec3 error = standard_error(double(rays));
+            const glm::dvec3 e = pi * sum / double(rays);
+            const double target =
+                std::max(budget.target_absolute_error,
+                         budget.target_relative_error * std::max({e.x, e.y, e.z}));
+            if (std::max({error.x, error.y, error.z}) < target) break;
+        }
+    }
+    IrradianceSample result;
+    const double count = double(std::max<long long>(rays, 1));
+    result.irradiance = pi * sum / count;
+    result.standard_error = standard_error(count);
+    result.rays = int(rays);
+    return result;
+}
+
 glm::vec3 camera_ray_direction(const Camera& camera, const RenderSettings& settings, float x,
                                float y) {
     // As camera_position_at() in gbuffer_encoding.glsl: ndc from the pixel
@@ -150,7 +248,14 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
     out.occlusion_split = image(3, 0.0f);
     out.standard_error = image(1, 0.0f);
     out.rays = image(1, 0.0f);
+    if (settings.irradiance) {
+        out.irradiance = image(3, 0.0f);
+        out.irradiance_standard_error = image(3, 0.0f);
+        out.irradiance_rays = image(1, 0.0f);
+        out.direct_radiance = image(3, 0.0f);
+    }
     std::vector<glm::vec3> positions(pixels), normals(pixels);
+    std::vector<RayScene::Hit> first_hits(pixels);
 
     const int thread_count = settings.threads > 0
                                  ? settings.threads
@@ -196,6 +301,7 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                 out.depth_layer0.pixels[i] = first.distance;
                 positions[i] = eye + direction * first.distance;
                 normals[i] = first.normal;
+                first_hits[i] = first;
                 const RayScene::Hit second = scene.intersect_front(
                     eye, direction, first.distance + render.min_separation, 1e30f);
                 if (second.hit) out.depth_layer1.pixels[i] = second.distance;
@@ -229,24 +335,51 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
         return -1;
     };
 
-    parallel_rows(
-        [&](int y) {
-            for (int x = 0; x < w; ++x) {
-                const std::size_t i = std::size_t(y) * w + x;
-                if (out.depth_layer0.pixels[i] <= 0.0f) continue;
-                const AoSample s =
-                    ambient_visibility_at(scene, positions[i], normals[i], render.ao.radius,
-                                          settings.rays, stream_seed(settings.seed, i), classify);
-                out.ambient_visibility.pixels[i] = float(s.visibility);
-                out.hit_visibility.pixels[i] = float(s.hit_visibility);
-                out.standard_error.pixels[i] = float(s.standard_error);
-                out.rays.pixels[i] = float(s.rays);
-                out.occlusion_split.pixels[3 * i + 0] = float(s.occlusion_layer0);
-                out.occlusion_split.pixels[3 * i + 1] = float(s.occlusion_layer1);
-                out.occlusion_split.pixels[3 * i + 2] = float(s.occlusion_neither);
-            }
-        },
-        true);
+    if (settings.ambient_visibility)
+        parallel_rows(
+            [&](int y) {
+                for (int x = 0; x < w; ++x) {
+                    const std::size_t i = std::size_t(y) * w + x;
+                    if (out.depth_layer0.pixels[i] <= 0.0f) continue;
+                    const AoSample s = ambient_visibility_at(
+                        scene, positions[i], normals[i], render.ao.radius, settings.rays,
+                        stream_seed(settings.seed, i), classify);
+                    out.ambient_visibility.pixels[i] = float(s.visibility);
+                    out.hit_visibility.pixels[i] = float(s.hit_visibility);
+                    out.standard_error.pixels[i] = float(s.standard_error);
+                    out.rays.pixels[i] = float(s.rays);
+                    out.occlusion_split.pixels[3 * i + 0] = float(s.occlusion_layer0);
+                    out.occlusion_split.pixels[3 * i + 1] = float(s.occlusion_layer1);
+                    out.occlusion_split.pixels[3 * i + 2] = float(s.occlusion_neither);
+                }
+            },
+            true);
+
+    // Irradiance streams are offset by the pixel count, so they share no
+    // random numbers with the ambient visibility of any pixel.
+    if (settings.irradiance)
+        parallel_rows(
+            [&](int y) {
+                for (int x = 0; x < w; ++x) {
+                    const std::size_t i = std::size_t(y) * w + x;
+                    if (out.depth_layer0.pixels[i] <= 0.0f) continue;
+                    const IrradianceSample s = irradiance_at(
+                        scene, positions[i], normals[i], settings.radiosity_radius,
+                        settings.irradiance_rays, stream_seed(settings.seed, pixels + i));
+                    for (int c = 0; c < 3; ++c) {
+                        out.irradiance.pixels[3 * i + c] = float(s.irradiance[c]);
+                        out.irradiance_standard_error.pixels[3 * i + c] =
+                            float(s.standard_error[c]);
+                    }
+                    out.irradiance_rays.pixels[i] = float(s.rays);
+                    const glm::dvec3 direct =
+                        direct_outgoing_radiance(scene, first_hits[i], positions[i]) -
+                        glm::dvec3(scene.surface(first_hits[i]).emissive);
+                    for (int c = 0; c < 3; ++c)
+                        out.direct_radiance.pixels[3 * i + c] = float(direct[c]);
+                }
+            },
+            true);
     return out;
 }
 

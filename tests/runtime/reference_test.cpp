@@ -179,7 +179,8 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     fs::remove_all(directory);
     const std::string command = std::string(DEEPGI_EXECUTABLE) +
                                 " reference --scene ref-slab --size 16x9 --rays 256 "
-                                "--min-rays 256 --threads 2 --output " +
+                                "--min-rays 256 --irradiance-rays 256 --irradiance-min-rays 256 "
+                                "--radiosity-radius 0.7 --threads 2 --output " +
                                 directory.string() + " > /dev/null";
     REQUIRE(std::system(command.c_str()) == 0);
     const auto visibility = deepgi::read_pfm(directory / "reference-ao-visibility.pfm");
@@ -188,18 +189,31 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     settings.render.width = 16;
     settings.render.height = 9;
     settings.rays.min_rays = settings.rays.max_rays = 256;
+    settings.irradiance = true;
+    settings.irradiance_rays.min_rays = settings.irradiance_rays.max_rays = 256;
+    settings.radiosity_radius = 0.7f;
     const deepgi::Scene scene = deepgi::make_builtin_scene("ref-slab");
     const deepgi::RayScene rays(scene);
     const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
     REQUIRE(visibility.pixels == images.ambient_visibility.pixels);
-    for (const char* name : {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
-                             "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
-                             "reference-ao-standard-error.pfm", "reference-ao-rays.pfm"})
+    const auto irradiance = deepgi::read_pfm(directory / "reference-irradiance.pfm");
+    REQUIRE(irradiance.channels == 3);
+    REQUIRE(irradiance.pixels == images.irradiance.pixels);
+    REQUIRE(deepgi::read_pfm(directory / "reference-direct-radiance.pfm").pixels ==
+            images.direct_radiance.pixels);
+    for (const char* name :
+         {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
+          "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
+          "reference-ao-standard-error.pfm", "reference-ao-rays.pfm",
+          "reference-irradiance-standard-error.pfm", "reference-irradiance-rays.pfm"})
         REQUIRE(fs::exists(directory / name));
     fs::remove_all(directory);
 
-    for (const char* arguments : {"--size 16x --output", "--size 16x9 --rays 0 --output",
-                                  "--size 16x9 --scene nosuch --output"}) {
+    for (const char* arguments :
+         {"--size 16x --output", "--size 16x9 --rays 0 --output",
+          "--size 16x9 --scene nosuch --output", "--size 16x9 --no-ao --no-irradiance --output",
+          "--size 16x9 --radiosity-radius 0 --output",
+          "--size 16x9 --irradiance-rays 0 --output"}) {
         const std::string bad = std::string(DEEPGI_EXECUTABLE) + " reference " + arguments + " " +
                                 directory.string() + " 2> /dev/null";
         const int status = std::system(bad.c_str());
@@ -208,4 +222,245 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
         REQUIRE(WEXITSTATUS(status) == 2);
         REQUIRE(!fs::exists(directory));
     }
+}
+
+namespace {
+
+// The quad p0..p3 drawn with `material`, which is appended to the scene.
+void add_quad_with(deepgi::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3,
+                   glm::vec3 albedo, glm::vec3 emissive) {
+    deepgi::Material material;
+    material.base_colour = glm::vec4(albedo, 1.0f);
+    material.emissive = emissive;
+    scene.batches.push_back({std::uint32_t(scene.indices.size()), 6u, int(scene.materials.size())});
+    scene.materials.push_back(material);
+    add_quad(scene, p0, p1, p2, p3);
+}
+
+// Irradiance budget for the closed-form cases: enough rays for a standard
+// error of 3% of E or less, so a 5-sigma margin still catches a wrong factor.
+deepgi::IrradianceRayBudget exact_budget() {
+    deepgi::IrradianceRayBudget budget;
+    budget.min_rays = budget.max_rays = 1 << 16;
+    return budget;
+}
+
+void require_within_error(const deepgi::IrradianceSample& s, glm::dvec3 expected) {
+    for (int c = 0; c < 3; ++c) {
+        INFO("channel " << c << ": E " << s.irradiance[c] << ", expected " << expected[c]
+                        << ", standard error " << s.standard_error[c]);
+        // The error estimate itself must be small enough to mean something.
+        REQUIRE(s.standard_error[c] <= 0.03 * expected[c] + 1e-9);
+        // Five standard errors: a false failure has odds below one in a million.
+        REQUIRE(s.irradiance[c] == Approx(expected[c]).margin(5 * s.standard_error[c] + 1e-6));
+    }
+}
+
+}  // namespace
+
+// A wall of uniform outgoing radiance L in the plane z = zw, facing -z, over
+// x in [x1, x2] and y in [0, b], standing on the floor y = 0. X lies on the
+// floor at (x0, 0, z0), normal +y, c = zw - z0 in front of the wall. With
+// cosine-weighted rays E = integral of L cos(theta) dw = pi L F, F the form
+// factor from the differential area at X to the wall.
+//
+// F by the contour integral (Stokes): for a polygon P1..Pk seen from X, with
+// R_i = P_i - X, F = 1/(2 pi) * sum_i gamma_i (n . g_i), gamma_i the angle
+// between R_i and R_i+1 and g_i the unit normal of the plane through X and
+// edge i, (R_i x R_i+1) / |R_i x R_i+1| (signs fixed by the orientation).
+// For the rectangle x in [0, a], y in [0, b] at distance c, corners
+// (0,0,c) (a,0,c) (a,b,c) (0,b,c) relative to X, and n = (0,1,0):
+//   bottom edge: R1 x R2 = (0, ac, 0), n.g = 1, gamma = atan(a / c);
+//   right and left edges: R x R' has no y component, n.g = 0;
+//   top edge: R3 x R4 = (0, -ac, ab), n.g = -c / sqrt(b^2 + c^2),
+//             gamma = atan(a / sqrt(b^2 + c^2)).
+// So  F(a) = 1/(2 pi) [atan(a/c) - c/sqrt(b^2+c^2) * atan(a/sqrt(b^2+c^2))],
+// odd in a; a wall from x1 to x2 seen from x0 gives F(x2 - x0) - F(x1 - x0).
+// Check: b, a -> infinity gives 1/4, half of the 1/2 of an infinite wall.
+TEST_CASE("reference: a lit wall onto a floor matches the analytic form factor", "[reference]") {
+    const float zw = 1.0f, x1 = -0.3f, x2 = 0.7f, b = 0.6f;
+    const glm::vec3 rho(0.8f, 0.4f, 0.2f), emitted(1.0f, 0.5f, 0.25f);
+    auto form_factor = [&](double x0, double c) {
+        const double h = std::sqrt(double(b) * b + c * c);
+        auto f = [&](double a) {
+            return (std::atan(a / c) - c / h * std::atan(a / h)) / (2 * glm::pi<double>());
+        };
+        return f(x2 - x0) - f(x1 - x0);
+    };
+    // The emitting wall, and the same wall lit head-on by a directional key
+    // light travelling along +z (it grazes the floor, which stays unlit), so
+    // its radiance is rho / pi * intensity * colour with a cosine of 1.
+    for (const bool lit : {false, true}) {
+        deepgi::Scene scene;
+        add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50},
+                      glm::vec3(0.5f), glm::vec3(0.0f));
+        add_quad_with(scene, {x2, 0, zw}, {x1, 0, zw}, {x1, b, zw}, {x2, b, zw},
+                      lit ? rho : glm::vec3(0.0f), lit ? glm::vec3(0.0f) : emitted);
+        scene.key_light.kind = deepgi::LightKind::directional;
+        scene.key_light.direction = {0, 0, 1};
+        scene.key_light.colour = glm::vec3(1.0f);
+        scene.key_light.intensity = 3.0f;
+        const deepgi::RayScene rays(scene);
+        const glm::dvec3 radiance =
+            lit ? glm::dvec3(rho) / glm::pi<double>() * 3.0 : glm::dvec3(emitted);
+        for (double x0 : {0.0, 0.2, -0.5, 1.1}) {
+            for (double c : {0.15, 0.4, 0.9}) {
+                const glm::vec3 x(float(x0), 0.0f, float(zw - c));
+                const auto s = deepgi::irradiance_at(rays, x, {0, 1, 0}, 50.0f, exact_budget(),
+                                                     777u + std::uint64_t(x0 * 100 + c * 10));
+                INFO((lit ? "lit" : "emitting") << " wall, x0 = " << x0 << ", c = " << c);
+                require_within_error(s, glm::pi<double>() * form_factor(x0, c) * radiance);
+            }
+        }
+    }
+}
+
+// An emitting ceiling of radiance L at height h over X, facing down and far
+// wider than the radius r. A ray at angle theta from the normal meets it at
+// h / cos(theta), within r iff cos(theta) > h / r = cos(theta0), so
+//   E = L * integral over the cap theta < theta0 of cos dw = pi L sin^2(theta0)
+//     = pi L (1 - (h/r)^2),   and 0 once h >= r.
+TEST_CASE("reference: an emitting plane facing the point gives pi L (1 - (h/r)^2)", "[reference]") {
+    const glm::vec3 emitted(2.0f, 1.0f, 0.5f);
+    const float radius = 0.8f;
+    for (double ratio : {0.1, 0.5, 0.9, 1.2}) {
+        const float h = float(ratio) * radius;
+        deepgi::Scene scene;
+        add_quad_with(scene, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100},
+                      glm::vec3(0.5f), glm::vec3(0.0f));
+        add_quad_with(scene, {-100, h, -100}, {100, h, -100}, {100, h, 100}, {-100, h, 100},
+                      glm::vec3(0.0f), emitted);
+        const deepgi::RayScene rays(scene);
+        const auto s = deepgi::irradiance_at(rays, {0.1f, 0.0f, -0.2f}, {0, 1, 0}, radius,
+                                             exact_budget(), 99u);
+        INFO("h / r = " << ratio);
+        if (ratio >= 1.0) {
+            REQUIRE(s.irradiance == glm::dvec3(0.0));
+        } else {
+            require_within_error(s,
+                                 glm::pi<double>() * (1.0 - ratio * ratio) * glm::dvec3(emitted));
+        }
+    }
+}
+
+TEST_CASE("reference: an open lit floor receives no irradiance, nor does the back of an emitter",
+          "[reference]") {
+    deepgi::Scene scene;
+    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.9f),
+                  glm::vec3(0.0f));
+    // An emitting wall that faces away from the points in front of it (+z),
+    // which sit at z < 1: the gather's facing test drops it, so must we.
+    add_quad_with(scene, {-1, 0, 1}, {1, 0, 1}, {1, 1, 1}, {-1, 1, 1}, glm::vec3(0.9f),
+                  glm::vec3(5.0f));
+    scene.key_light.kind = deepgi::LightKind::directional;
+    scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    const deepgi::RayScene rays(scene);
+    deepgi::IrradianceRayBudget budget;
+    budget.min_rays = budget.max_rays = 4096;
+    // The floor is lit (so it is not the light that is missing).
+    const deepgi::RayScene::Hit down = rays.intersect({0, 1, -3}, {0, -1, 0}, 0.0f, 10.0f);
+    REQUIRE(down.hit);
+    REQUIRE(deepgi::direct_outgoing_radiance(rays, down, {0, 0, -3}).x > 0.1);
+    for (glm::vec3 x : {glm::vec3(0, 0, -3), glm::vec3(0.5f, 0, 0.8f), glm::vec3(-0.2f, 0, 0.2f)}) {
+        const auto s = deepgi::irradiance_at(rays, x, {0, 1, 0}, 5.0f, budget, 5u);
+        REQUIRE(s.irradiance == glm::dvec3(0.0));
+        REQUIRE(s.standard_error == glm::dvec3(0.0));
+    }
+    // Behind the wall (z > 1) the emitter faces the point and does light it.
+    const auto behind = deepgi::irradiance_at(rays, {0, 0, 1.3f}, {0, 1, 0}, 5.0f, budget, 5u);
+    REQUIRE(behind.irradiance.x > 0.5);
+}
+
+// A spot light h above a floor, pointing down: at horizontal distance s the
+// point is d = sqrt(h^2 + s^2) away and both the floor's cosine and the
+// cosine to the spot axis are h / d, so inside the inner cone
+//   L = rho / pi * I / d^2 * h / d,
+// 0 outside the outer cone, and 0 under a blocker.
+TEST_CASE("reference: the key light's spot cone, falloff and shadow", "[reference]") {
+    const float h = 2.0f;
+    const glm::vec3 rho(0.6f, 0.5f, 0.4f);
+    deepgi::Scene scene;
+    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, rho,
+                  glm::vec3(0.0f));
+    // A 20 cm blocker plate at height 1 over the origin: off the light paths
+    // of the first spot position, right under the second.
+    add_quad_with(scene, {-0.1f, 1, 0.1f}, {0.1f, 1, 0.1f}, {0.1f, 1, -0.1f}, {-0.1f, 1, -0.1f},
+                  glm::vec3(0.5f), glm::vec3(0.0f));
+    scene.key_light.kind = deepgi::LightKind::spot;
+    scene.key_light.position = {3.0f, h, 0.0f};
+    scene.key_light.direction = {0, -1, 0};
+    scene.key_light.colour = glm::vec3(1.0f);
+    scene.key_light.intensity = 10.0f;
+    scene.key_light.inner_cone = glm::radians(40.0f);
+    scene.key_light.outer_cone = glm::radians(50.0f);
+    const deepgi::RayScene rays(scene);
+    auto radiance_at = [&](glm::vec3 p) {
+        const auto hit = rays.intersect(p + glm::vec3(0, 0.5f, 0), {0, -1, 0}, 0.0f, 1.0f);
+        REQUIRE(hit.hit);
+        return deepgi::direct_outgoing_radiance(rays, hit, p);
+    };
+    // Inside the inner cone: tan 40 deg * 2 = 1.68.
+    for (float s : {0.0f, 0.7f, 1.5f}) {
+        const double d = std::sqrt(double(h) * h + double(s) * s);
+        const glm::dvec3 expected = glm::dvec3(rho) / glm::pi<double>() * 10.0 / (d * d) * (h / d);
+        const glm::dvec3 got = radiance_at({3.0f + s, 0.0f, 0.0f});
+        INFO("s = " << s);
+        for (int c = 0; c < 3; ++c) REQUIRE(got[c] == Approx(expected[c]).epsilon(1e-5));
+    }
+    // Between the cones the smoothstep lies strictly between 0 and full.
+    {
+        const float s = 2.0f;  // 45 degrees off the axis
+        const double d = std::sqrt(double(h) * h + double(s) * s);
+        const double full = rho.x / glm::pi<double>() * 10.0 / (d * d) * (h / d);
+        const double got = radiance_at({3.0f + s, 0.0f, 0.0f}).x;
+        REQUIRE(got > 0.05 * full);
+        REQUIRE(got < 0.95 * full);
+    }
+    // Outside the outer cone (tan 50 deg * 2 = 2.38): nothing.
+    REQUIRE(radiance_at({3.0f + 2.6f, 0.0f, 0.0f}) == glm::dvec3(0.0));
+    // The spot moved over the blocker: the floor right under it is in shadow.
+    scene.key_light.position = {0.0f, h, 0.0f};
+    const deepgi::RayScene shadowed(scene);
+    const auto hit = shadowed.intersect({0.0f, 0.5f, 0.0f}, {0, -1, 0}, 0.0f, 1.0f);
+    REQUIRE(hit.hit);
+    REQUIRE(deepgi::direct_outgoing_radiance(shadowed, hit, {0.0f, 0.0f, 0.0f}) == glm::dvec3(0.0));
+    // At x = 0.5 the light passes the blocker's height at x = 0.25: lit again.
+    const auto beside = shadowed.intersect({0.5f, 0.5f, 0.0f}, {0, -1, 0}, 0.0f, 1.0f);
+    REQUIRE(deepgi::direct_outgoing_radiance(shadowed, beside, {0.5f, 0.0f, 0.0f}).x > 0.1);
+}
+
+TEST_CASE("reference: irradiance images do not depend on the thread count", "[reference]") {
+    deepgi::Scene scene;
+    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.7f),
+                  glm::vec3(0.0f));
+    add_quad_with(scene, {0, 0, 50}, {0, 0, -50}, {0, 5, -50}, {0, 5, 50},
+                  glm::vec3(0.8f, 0.2f, 0.2f), glm::vec3(0.0f));
+    scene.key_light.kind = deepgi::LightKind::directional;
+    scene.key_light.direction = glm::normalize(glm::vec3(-1.0f, -1.0f, 0.3f));
+    const deepgi::RayScene rays(scene);
+    deepgi::Camera camera;
+    camera.position = {1.5f, 1.0f, 2.0f};
+    camera.yaw = 0.5f;
+    camera.pitch = -0.4f;
+    auto settings = small_settings(24, 16);
+    settings.ambient_visibility = false;
+    settings.irradiance = true;
+    settings.irradiance_rays.min_rays = 64;
+    settings.irradiance_rays.max_rays = 1024;
+    settings.threads = 1;
+    const auto one = deepgi::render_reference(rays, camera, settings);
+    settings.threads = 3;
+    const auto three = deepgi::render_reference(rays, camera, settings);
+    REQUIRE(one.irradiance.pixels == three.irradiance.pixels);
+    REQUIRE(one.irradiance_standard_error.pixels == three.irradiance_standard_error.pixels);
+    REQUIRE(one.irradiance_rays.pixels == three.irradiance_rays.pixels);
+    REQUIRE(one.direct_radiance.pixels == three.direct_radiance.pixels);
+    // The lit wall bounces red onto the floor: not two blank images.
+    float reddest = 0.0f;
+    for (std::size_t i = 0; i < one.irradiance.pixels.size(); i += 3)
+        reddest = std::max(reddest, one.irradiance.pixels[i] - one.irradiance.pixels[i + 1]);
+    REQUIRE(reddest > 0.05f);
+    settings.seed = 2;
+    const auto reseeded = deepgi::render_reference(rays, camera, settings);
+    REQUIRE(reseeded.irradiance.pixels != one.irradiance.pixels);
 }

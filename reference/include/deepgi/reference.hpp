@@ -1,7 +1,8 @@
 #pragma once
-// Ray-traced ground truth (Embree 3, CPU) for the deep SAO pass: the same
-// camera, guard band and pixel grid as layer 0 of the deep G-buffer, and the
-// ambient visibility that deep SAO estimates. No GL here; only the scene, the
+// Ray-traced ground truth (Embree 3, CPU) for deep SAO and deep radiosity: the
+// same camera, guard band and pixel grid as layer 0 of the deep G-buffer, the
+// ambient visibility that deep SAO estimates, and the one-bounce irradiance
+// that the radiosity gather estimates. No GL here; only the scene, the
 // camera and the frame layout of the runtime. Definitions: docs/reference.md.
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
@@ -29,14 +30,29 @@ public:
         float distance = 0.0f;   // along the (unit) direction
         glm::vec3 normal{0.0f};  // unit geometric normal, counter-clockwise side
         unsigned primitive = 0;
+        glm::vec2 barycentric{0.0f};  // Embree's (u, v): weights of vertices 1 and 2
     };
     // Nearest hit in (t_near, t_far) on either side of a triangle.
     Hit intersect(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const;
     // Nearest hit in (t_near, t_far) whose front faces the ray (dot(n, d) < 0),
     // as a rasteriser with back-face culling sees it.
     Hit intersect_front(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const;
+    // Whether anything lies in (t_near, t_far) along the ray (shadow rays).
+    bool occluded(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const;
     // Scene extent, for offsets that scale with the scene.
     float scale() const { return scale_; }
+
+    // What the G-buffer would store at a hit: the interpolated vertex normal
+    // (unit; the geometric normal where the vertices have none), the linear
+    // albedo (base colour times the texture, nearest texel) and the emissive.
+    struct Surface {
+        glm::vec3 shading_normal{0.0f};
+        glm::vec3 albedo{0.0f};
+        glm::vec3 emissive{0.0f};
+    };
+    Surface surface(const Hit& hit) const;
+    // The scene's key light (copied at construction).
+    const KeyLight& key_light() const;
 
 private:
     struct State;
@@ -74,9 +90,49 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
                                float radius, const AoRayBudget& budget, std::uint64_t seed,
                                const LayerClassifier& classify = {});
 
+// One-bounce irradiance at a surface point X with normal n, radius r:
+//     E(X) = integral over the hemisphere of L(y(w)) cos(theta) dw
+// where y(w) is the first surface along w; L = 0 when y is farther than r,
+// when nothing is hit, or when w reaches y's back face; otherwise
+//     L(y) = albedo(y) / pi * E_key(y) * max(0, n_s(y) . l) * V(y) + emissive(y)
+// the outgoing radiance of the directly lit scene: the key light as
+// lighting.glsl models it (directional, or a spot with 1/d^2 and the
+// smoothstep cone), n_s the shading normal, and V a shadow ray to the light
+// (exact, where the renderer filters a shadow map). This is what deep
+// radiosity's B(Y) holds with boost 1, rho_prop 0 and no clamp.
+// Estimated with cosine-weighted directions (pdf cos / pi): E = pi * mean(L);
+// standard error pi * sqrt(sample variance / rays), per channel.
+struct IrradianceSample {
+    glm::dvec3 irradiance{0.0};
+    glm::dvec3 standard_error{0.0};
+    int rays = 0;
+};
+
+struct IrradianceRayBudget {
+    int min_rays = 1024;
+    int max_rays = 16384;
+    // Stop once every channel's standard error is below
+    // max(target_absolute_error, target_relative_error * largest channel of E).
+    double target_relative_error = 0.01;
+    double target_absolute_error = 0.002;
+    int batch = 256;
+};
+
+// The radiance the directly lit scene sends from `position` on the surface
+// of `hit` (L(y) above, without the radius and facing conditions).
+glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& hit,
+                                    glm::vec3 position);
+
+IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
+                               float radius, const IrradianceRayBudget& budget, std::uint64_t seed);
+
 struct ReferenceSettings {
     RenderSettings render;  // size, guard band, min_separation (dz), ao.radius
     AoRayBudget rays;
+    bool ambient_visibility = true;  // trace AO
+    bool irradiance = false;         // trace one-bounce irradiance
+    float radiosity_radius = 1.0f;   // m, as deepgi --radiosity-radius
+    IrradianceRayBudget irradiance_rays;
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     // Called with (pixels done, pixels total) from the calling thread.
@@ -93,6 +149,13 @@ struct ReferenceImages {
     FloatImage occlusion_split;     // RGB: occluders seen by layer 0, layer 1, neither
     FloatImage standard_error;      // Monte Carlo standard error of AV
     FloatImage rays;                // rays spent per pixel
+    // Only when ReferenceSettings::irradiance (empty otherwise):
+    FloatImage irradiance;                 // RGB one-bounce E (0 on sky)
+    FloatImage irradiance_standard_error;  // RGB, per channel
+    FloatImage irradiance_rays;            // rays spent per pixel
+    // RGB direct light reflected at layer 0 (emissive excluded): what the
+    // direct light pass writes, with an exact shadow ray for the shadow map.
+    FloatImage direct_radiance;
 };
 
 // The camera ray through the centre of internal pixel (x, y), exactly as the
