@@ -291,8 +291,10 @@ void Renderer::set_key_light(const KeyLight& light) {
     if (glm::length(light.direction) < 1e-6f)
         throw InputError("light: the direction must not be zero");
     RendererState& state = *state_;
+    // Stored as given: the frame constants and the shadow projection
+    // normalise the direction themselves, and renormalising here could move
+    // the last bit of an already unit vector (and with it pixels).
     state.scene.key_light = light;
-    state.scene.key_light.direction = glm::normalize(light.direction);
     state.frame.shadow = shadow_projection(state.scene, state.settings.shadow_map_size);
 }
 

@@ -447,6 +447,7 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
     WindowState state(options);
     state.settings = initial_settings;
     Scene first_scene = load_scene(options.scene, options.scene_limits);
+    if (!options.camera.empty()) find_file_camera(first_scene, options.camera);  // throws early
 
     WindowContext context(initial_settings.width, initial_settings.height,
                           fmt::format("deepgi - {}", first_scene.name), true);
