@@ -36,8 +36,10 @@ target_link_libraries(deepgi_pass_interface_tests PRIVATE deepgi::runtime spiral
 target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/tests)
 catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEOUT 300)
 
-# The interactive window: keys, settings table and script parser (no window).
-add_executable(deepgi_window_tests ${CMAKE_CURRENT_LIST_DIR}/window_controls_test.cpp)
+# The interactive window: keys, settings table, script parser and the
+# renderer's live edits (EGL, no window).
+add_executable(deepgi_window_tests ${CMAKE_CURRENT_LIST_DIR}/window_controls_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/live_settings_test.cpp)
 target_link_libraries(deepgi_window_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_window_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 target_compile_definitions(deepgi_window_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
