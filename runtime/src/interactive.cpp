@@ -315,12 +315,16 @@ void handle_action(WindowState& state, KeyAction action) {
 
 void draw_panel(WindowState& state, RenderSettings& wanted) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380, 560), ImGuiCond_FirstUseEver);
+    const float window_height = ImGui::GetIO().DisplaySize.y;
+    ImGui::SetNextWindowSize(ImVec2(440, std::max(200.0f, window_height - 16.0f)),
+                             ImGuiCond_FirstUseEver);
     // Resizable and collapsible (title bar arrow); F1 hides it altogether.
     if (!ImGui::Begin("deepgi (F1 hides)")) {
         ImGui::End();
         return;
     }
+    // Room for the longest label right of the widgets, however wide the panel.
+    ImGui::PushItemWidth(-150.0f);
     const auto builtin = builtin_scene_names();
     if (ImGui::BeginCombo("scene", state.scene.name.c_str())) {
         for (const std::string& name : builtin) {
@@ -395,6 +399,7 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
             ImGui::Text("%-8s %s", std::string(binding.key).c_str(),
                         std::string(binding.description).c_str());
     }
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 
