@@ -6,6 +6,7 @@
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/image_io.hpp"
+#include "deepgi/window_controls.hpp"
 #include "reference_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -51,6 +52,9 @@ struct Options {
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
     std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
+    int shadow_map_size = deepgi::RenderSettings{}.shadow_map_size;
+    std::string script;                      // window: --script FILE
+    std::string screenshot_directory = ".";  // window: where F12 writes
 };
 
 // Only the format; the range is checked with every other setting by
@@ -96,6 +100,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.radiosity = options.radiosity;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     settings.gl_debug = options.gl_debug;
+    settings.shadow_map_size = options.shadow_map_size;
     deepgi::validate(settings);
     return settings;
 }
@@ -157,7 +162,16 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "reference")
         return deepgi_app::run_reference_command(argc, argv);
     Options options;
-    CLI::App app{"deepgi: deep G-buffer demo renderer (OpenGL 4.5)"};
+    CLI::App app{
+        "deepgi: deep G-buffer demo renderer (OpenGL 4.5). Without --headless it opens an "
+        "interactive window (GLFW + Dear ImGui panel that edits every setting below and the "
+        "light live); with --headless it renders through EGL and writes --output."};
+    // --help shows every default.
+    app.option_defaults()->always_capture_default();
+    app.footer(
+        fmt::format("Window keys:\n  {}\n{}\n--script FILE drives the window frame by "
+                    "frame (docs/deepgi.md, 'Interactive window').",
+                    deepgi::movement_help(), deepgi::key_help_text()));
     app.add_flag("--headless", options.headless,
                  "Render without a window (EGL) and write --output");
     app.add_flag("--hidden-window", options.hidden_window,
@@ -165,7 +179,8 @@ int main(int argc, char** argv) {
                  "server, e.g. xvfb-run)");
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
     app.add_option("--scene-limit", options.scene_limits,
-                   "Raise a scene file limit (headless), NAME=VALUE: json-depth, node-visits, "
+                   "Raise a scene file limit (also for files dropped onto the window), NAME=VALUE: "
+                   "json-depth, node-visits, "
                    "triangles, texture-side, texture-bytes (docs/hardening.md)");
     app.add_option(
         "--size", options.size,
@@ -193,11 +208,20 @@ int main(int argc, char** argv) {
                        " (cpu: glFinish and a CPU clock; gpu: timer queries)");
     app.add_option("--camera", options.camera,
                    "View through the glTF file's camera of this name or index (default: its "
-                   "first perspective camera)");
+                   "first perspective camera); in the window, R resets to it");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
                  "Print the last frame's per-pass milliseconds");
+    app.add_option(
+        "--shadow-map-size", options.shadow_map_size,
+        fmt::format("Shadow map side in pixels ({} to {})", deepgi::limits::min_shadow_map_size,
+                    deepgi::limits::max_shadow_map_size));
+    app.add_option("--script", options.script,
+                   "Window only: run the window from a script of per-frame commands (set, key, "
+                   "screenshot, drop, quit; docs/deepgi.md)");
+    app.add_option("--screenshot-dir", options.screenshot_directory,
+                   "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory");
     app.add_flag("--gl-debug", options.gl_debug,
                  "Turn GL errors into an error that names the pass (KHR_debug callback)");
     // Deep SAO (docs/deep-sao.md).
@@ -261,18 +285,31 @@ int main(int argc, char** argv) {
     try {
         const deepgi::RenderSettings settings = settings_from(options);
         deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
-        if (options.headless) return run_headless(options, settings);
+        if (options.headless) {
+            for (const char* name : {"--script", "--screenshot-dir"})
+                if (app.count(name) > 0)
+                    throw deepgi::InputError(
+                        fmt::format("{} only applies to the window (leave out --headless)", name));
+            return run_headless(options, settings);
+        }
         if (options.hidden_window) throw deepgi::InputError("--hidden-window needs --headless");
         // The window would silently ignore these; say so instead.
         std::string headless_only;
-        for (const char* name : {"--output", "--dump", "--frames", "--camera"})
+        for (const char* name : {"--output", "--dump", "--frames", "--camera-path"})
             if (app.count(name) > 0)
                 headless_only += std::string(headless_only.empty() ? "" : ", ") + name;
         if (!headless_only.empty())
             throw deepgi::InputError(
                 fmt::format("{} only apply with --headless (leaving out --headless opens a window)",
                             headless_only));
-        return deepgi::run_interactive(options.scene, settings);
+        deepgi::WindowOptions window;
+        window.scene = options.scene;
+        for (const auto& assignment : options.scene_limits)
+            deepgi::set_scene_limit(window.scene_limits, assignment);
+        window.camera = options.camera;
+        window.script = options.script;
+        window.screenshot_directory = options.screenshot_directory;
+        return deepgi::run_interactive(window, settings);
     } catch (const deepgi::InputError& error) {
         fmt::print(stderr, "deepgi: error: {}\n", error.what());
         return exit_bad_input;

@@ -259,18 +259,47 @@ void Renderer::set_settings(const RenderSettings& settings) {
     const bool reallocate = resized || settings.shadow_map_size != state.settings.shadow_map_size ||
                             settings.ao.max_mip_level != state.settings.ao.max_mip_level;
     const bool retime = settings.timing != state.settings.timing;
+    const bool layers_changed = settings.radiosity.layers != state.settings.radiosity.layers;
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     state.settings = settings;
     if (reallocate) resize_passes(state);
     if (resized) {
         state.frame.invalidate_history(fmt::format("resize to {}x{}, guard band {}", settings.width,
                                                    settings.height, settings.guard_band_fraction));
+    } else if (layers_changed) {
+        state.frame.invalidate_history(
+            fmt::format("radiosity layers changed to {}", settings.radiosity.layers));
     }
     if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));
 }
 
 const RenderSettings& Renderer::settings() const {
     return state_->settings;
+}
+
+void Renderer::set_key_light(const KeyLight& light) {
+    auto finite = [](glm::vec3 v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    if (!finite(light.position) || !finite(light.direction) || !finite(light.colour) ||
+        !std::isfinite(light.intensity) || !std::isfinite(light.outer_cone) ||
+        !std::isfinite(light.inner_cone)) {
+        throw InputError("light: every value must be finite");
+    }
+    if (light.intensity < 0.0f || glm::any(glm::lessThan(light.colour, glm::vec3(0.0f))))
+        throw InputError("light: intensity and colour must be >= 0");
+    if (glm::length(light.direction) < 1e-6f)
+        throw InputError("light: the direction must not be zero");
+    RendererState& state = *state_;
+    // Stored as given: the frame constants and the shadow projection
+    // normalise the direction themselves, and renormalising here could move
+    // the last bit of an already unit vector (and with it pixels).
+    state.scene.key_light = light;
+    state.frame.shadow = shadow_projection(state.scene, state.settings.shadow_map_size);
+}
+
+const KeyLight& Renderer::key_light() const {
+    return state_->scene.key_light;
 }
 FrameLayout Renderer::layout() const {
     return frame_layout(state_->settings);

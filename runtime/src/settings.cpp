@@ -161,4 +161,62 @@ void validate(const RenderSettings& settings) {
     }
 }
 
+namespace {
+
+// A float field's accessors, as plain function pointers for the table.
+#define DEEPGI_FLOAT_FIELD(member)                           \
+    [](const RenderSettings& s) { return float(s.member); }, \
+        [](RenderSettings& s, float value) { s.member = value; }
+#define DEEPGI_INT_FIELD(member)                             \
+    [](const RenderSettings& s) { return float(s.member); }, \
+        [](RenderSettings& s, float value) { s.member = int(std::lround(value)); }
+
+// Slider ranges sit inside validate()'s limits; where validate() has no upper
+// limit the slider stops at what is still useful in the built-in scenes.
+const std::array<NumericSetting, 16> numeric_table = {{
+    {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
+     DEEPGI_FLOAT_FIELD(min_separation)},
+    {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
+    {"guard-band", "guard band (* height)", "frame", false, 0.0f, limits::max_guard_band_fraction,
+     false, DEEPGI_FLOAT_FIELD(guard_band_fraction)},
+    {"shadow-map-size", "shadow map size (px)", "frame", true, float(limits::min_shadow_map_size),
+     4096.0f, true, DEEPGI_INT_FIELD(shadow_map_size)},
+    {"ao-radius", "radius (m)", "ao", false, 0.01f, 10.0f, true, DEEPGI_FLOAT_FIELD(ao.radius)},
+    {"ao-bias", "bias (m)", "ao", false, 0.0f, 0.5f, false, DEEPGI_FLOAT_FIELD(ao.bias)},
+    {"ao-intensity", "intensity", "ao", false, 0.1f, 8.0f, true, DEEPGI_FLOAT_FIELD(ao.intensity)},
+    {"ao-q", "q (px per MIP)", "ao", false, limits::min_ao_q, 64.0f, true,
+     DEEPGI_FLOAT_FIELD(ao.q)},
+    {"ao-layers", "layers", "ao", true, 1.0f, float(limits::max_ao_layers), false,
+     DEEPGI_INT_FIELD(ao.layers)},
+    {"ao-max-mip", "max MIP level", "ao", true, 0.0f, float(limits::max_ao_mip_level), false,
+     DEEPGI_INT_FIELD(ao.max_mip_level)},
+    {"radiosity-radius", "radius (m)", "radiosity", false, 0.05f, 10.0f, true,
+     DEEPGI_FLOAT_FIELD(radiosity.radius)},
+    {"radiosity-boost", "boost", "radiosity", false, 0.0f, 1.0f, false,
+     DEEPGI_FLOAT_FIELD(radiosity.boost)},
+    {"radiosity-clamp", "tap clamp", "radiosity", false, 0.1f, 100.0f, true,
+     DEEPGI_FLOAT_FIELD(radiosity.tap_clamp)},
+    {"rho-prop", "rho_prop (bounces)", "radiosity", false, 0.0f, 1.0f, false,
+     DEEPGI_FLOAT_FIELD(radiosity.rho_prop)},
+    {"radiosity-alpha", "temporal alpha", "radiosity", false, 0.0f, 0.99f, false,
+     DEEPGI_FLOAT_FIELD(radiosity.alpha)},
+    {"radiosity-layers", "layers", "radiosity", true, 1.0f, float(limits::max_radiosity_layers),
+     false, DEEPGI_INT_FIELD(radiosity.layers)},
+}};
+
+#undef DEEPGI_FLOAT_FIELD
+#undef DEEPGI_INT_FIELD
+
+}  // namespace
+
+std::span<const NumericSetting> numeric_settings() {
+    return numeric_table;
+}
+
+const NumericSetting* find_numeric_setting(std::string_view name) {
+    for (const auto& setting : numeric_table)
+        if (setting.name == name) return &setting;
+    return nullptr;
+}
+
 }  // namespace deepgi

@@ -104,7 +104,20 @@ TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runti
     // Window mode: refused before any window opens, so no display is needed.
     require_one_line_error("--size 160x90 --dump d --frames 3",
                            "--output, --dump, --frames only apply with --headless");
-    require_one_line_error("--size 160x90 --camera 0", "--camera only apply with --headless");
+    require_one_line_error("--size 160x90 --camera-path",
+                           "--output, --camera-path only apply with --headless");
+    require_one_line_error("--headless --size 160x90 --script s.txt",
+                           "--script only applies to the window (leave out --headless)");
+    {
+        // --camera reaches the window too, and is checked before it opens
+        // (so this needs no display).
+        const RunResult window = run_deepgi("--size 160x90 --camera 0");
+        INFO(window.stderr_text);
+        REQUIRE(window.status == 2);
+        REQUIRE(window.stderr_text ==
+                "deepgi: error: --camera '0': scene 'cornell' has no such perspective camera "
+                "(it has none)\n");
+    }
     require_one_line_error("--headless --size 160x90 --camera 0",
                            "scene 'cornell' has no such perspective camera (it has none)");
     const fs::path jpeg = scratch() / "image.jpg";

@@ -1,15 +1,24 @@
 #pragma once
 #include "deepgi/renderer.hpp"
+#include "deepgi/scene.hpp"
 
 #include <filesystem>
 #include <string>
 
 namespace deepgi {
 
-// Opens a window with a fly camera (WASD, right mouse button to look), debug
-// view cycling (V / Shift+V), generator cycling (G) and a Dear ImGui panel.
-// Returns the process exit status.
-int run_interactive(const std::string& scene_name, const RenderSettings& settings);
+struct WindowOptions {
+    std::string scene = "cornell";  // built-in name or glTF file
+    SceneLimits scene_limits;       // also for files dropped onto the window
+    std::string camera;             // a file camera's name or index; empty: the default
+    std::filesystem::path script;   // --script FILE (window_controls.hpp); empty: none
+    std::filesystem::path screenshot_directory = ".";  // where F12's dated folders go
+};
+
+// Opens a window with a fly camera, the keys of window_controls.hpp, a Dear
+// ImGui panel that edits every setting and the light live, drag-and-drop of
+// glTF files and screenshots. Returns the process exit status.
+int run_interactive(const WindowOptions& options, const RenderSettings& settings);
 
 // Renders `frames` frames of the default camera into a hidden GLFW window's
 // context and writes the PNG: the same image as the EGL path, used to test

@@ -56,9 +56,17 @@ public:
     void render(const Camera& camera, CameraMotion motion = CameraMotion::continuous);
 
     // Changing size reallocates every render target (no shader is rebuilt)
-    // and forgets the previous frame.
+    // and forgets the previous frame, as does changing the radiosity layer
+    // count (the layer-1 history was not written while it was off). Every
+    // other setting applies from the next frame with history kept.
     void set_settings(const RenderSettings& settings);
     const RenderSettings& settings() const;
+    // Edits the key light in place (the frame constants and the shadow
+    // projection follow; nothing is reallocated or rebuilt). History is kept:
+    // the temporal filter blends the new light in. Throws InputError for a
+    // non-finite value, a negative intensity or colour, or a zero direction.
+    void set_key_light(const KeyLight& light);
+    const KeyLight& key_light() const;
     FrameLayout layout() const;
 
     const std::vector<PassTiming>& last_timings() const;

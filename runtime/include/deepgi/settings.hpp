@@ -149,4 +149,24 @@ struct RenderSettings {
 // one line naming the setting by its command-line option.
 void validate(const RenderSettings& settings);
 
+// One numeric setting as the window's panel and its --script `set` command see
+// it. The slider range is only the panel's convenience: validate() holds the
+// hard limits (a typed-in or scripted value outside the slider is accepted
+// when valid).
+struct NumericSetting {
+    std::string_view name;   // the command-line option without "--", e.g. "ao-radius"
+    std::string_view label;  // the panel's label
+    std::string_view group;  // the panel section: "frame", "ao" or "radiosity"
+    bool integer = false;
+    float slider_min = 0.0f;
+    float slider_max = 1.0f;
+    bool logarithmic = false;
+    float (*get)(const RenderSettings&) = nullptr;
+    void (*set)(RenderSettings&, float) = nullptr;
+};
+// In panel order.
+std::span<const NumericSetting> numeric_settings();
+// nullptr for an unknown name.
+const NumericSetting* find_numeric_setting(std::string_view name);
+
 }  // namespace deepgi

@@ -7,6 +7,9 @@
 namespace deepgi {
 
 std::unique_ptr<Pass> make_shadow_pass(const ShaderLoader& loader, const Scene& scene);
+// The key light's shadow projection for a `size` x `size` map; the shadow pass
+// computes it on resize, and the renderer again when the light is edited.
+ShadowProjection shadow_projection(const Scene& scene, int size);
 std::unique_ptr<Pass> make_gbuffer_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene& scene);

@@ -15,34 +15,6 @@ glm::vec3 up_vector_for(glm::vec3 direction) {
     return std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
 }
 
-ShadowProjection shadow_projection(const Scene& scene, int size) {
-    ShadowProjection result;
-    result.size = size;
-    const KeyLight& light = scene.key_light;
-    const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
-    const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
-    const glm::vec3 direction = glm::normalize(light.direction);
-    if (light.kind == LightKind::directional) {
-        // An orthographic box around the scene's bounding sphere.
-        const glm::vec3 eye = centre - direction * (2.0f * radius);
-        const glm::mat4 view = glm::lookAt(eye, centre, up_vector_for(direction));
-        const glm::mat4 projection =
-            glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius);
-        result.light_view_projection = projection * view;
-        result.normal_offset = 1.5f * (2.0f * radius / float(size));
-    } else {
-        const float fov =
-            std::min(2.0f * light.outer_cone + glm::radians(10.0f), glm::radians(160.0f));
-        const glm::mat4 view =
-            glm::lookAt(light.position, light.position + direction, up_vector_for(direction));
-        const glm::mat4 projection =
-            glm::perspectiveRH_ZO(fov, 1.0f, 0.01f * radius, 4.0f * radius);
-        result.light_view_projection = projection * view;
-        result.normal_offset = 1.5f * (2.0f * radius * std::tan(fov * 0.5f) / float(size));
-    }
-    return result;
-}
-
 class ShadowPass final : public Pass {
 public:
     explicit ShadowPass(const ShaderLoader& loader)
@@ -104,6 +76,34 @@ private:
 };
 
 }  // namespace
+
+ShadowProjection shadow_projection(const Scene& scene, int size) {
+    ShadowProjection result;
+    result.size = size;
+    const KeyLight& light = scene.key_light;
+    const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
+    const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
+    const glm::vec3 direction = glm::normalize(light.direction);
+    if (light.kind == LightKind::directional) {
+        // An orthographic box around the scene's bounding sphere.
+        const glm::vec3 eye = centre - direction * (2.0f * radius);
+        const glm::mat4 view = glm::lookAt(eye, centre, up_vector_for(direction));
+        const glm::mat4 projection =
+            glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius);
+        result.light_view_projection = projection * view;
+        result.normal_offset = 1.5f * (2.0f * radius / float(size));
+    } else {
+        const float fov =
+            std::min(2.0f * light.outer_cone + glm::radians(10.0f), glm::radians(160.0f));
+        const glm::mat4 view =
+            glm::lookAt(light.position, light.position + direction, up_vector_for(direction));
+        const glm::mat4 projection =
+            glm::perspectiveRH_ZO(fov, 1.0f, 0.01f * radius, 4.0f * radius);
+        result.light_view_projection = projection * view;
+        result.normal_offset = 1.5f * (2.0f * radius * std::tan(fov * 0.5f) / float(size));
+    }
+    return result;
+}
 
 std::unique_ptr<Pass> make_shadow_pass(const ShaderLoader& loader, const Scene&) {
     return std::make_unique<ShadowPass>(loader);

@@ -1,0 +1,226 @@
+// The window's keys, settings table, script parser and fly-camera step,
+// without a window.
+#include "deepgi/errors.hpp"
+#include "deepgi/window_controls.hpp"
+#include "support/process.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+using namespace deepgi;
+
+namespace {
+
+// The InputError message parse_script throws, or "" when it parses.
+std::string script_error(const std::string& text) {
+    try {
+        parse_script(text, "s.txt");
+    } catch (const InputError& error) {
+        return error.what();
+    }
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("window: a script parses into commands in file order", "[runtime][window]") {
+    const auto commands = parse_script(
+        "# comment line\n"
+        "\n"
+        "frame 0 set ao-radius 2.5   # trailing comment\n"
+        "frame 0 set light-colour 1 0.5 0.25\n"
+        "frame 3 key Shift+V\n"
+        "frame 3 screenshot out/a\n"
+        "frame 4 drop model.glb\n"
+        "frame 9 quit",
+        "s.txt");
+    REQUIRE(commands.size() == 6);
+    CHECK(commands[0].frame == 0);
+    CHECK(commands[0].kind == ScriptCommand::Kind::set);
+    CHECK(commands[0].name == "ao-radius");
+    CHECK(commands[0].values == std::vector<std::string>{"2.5"});
+    CHECK(commands[0].line == 3);
+    CHECK(commands[1].values == std::vector<std::string>{"1", "0.5", "0.25"});
+    CHECK(commands[2].kind == ScriptCommand::Kind::key);
+    CHECK(commands[2].name == "Shift+V");
+    CHECK(commands[3].kind == ScriptCommand::Kind::screenshot);
+    CHECK(commands[3].values == std::vector<std::string>{"out/a"});
+    CHECK(commands[4].kind == ScriptCommand::Kind::drop);
+    CHECK(commands[5].kind == ScriptCommand::Kind::quit);
+    CHECK(commands[5].frame == 9);
+    CHECK(commands[5].line == 8);
+}
+
+TEST_CASE("window: script errors name the file, the line and the problem", "[runtime][window]") {
+    CHECK(script_error("frame 1 quit\nquit\n") == "s.txt:2: expected 'frame N COMMAND ...'");
+    CHECK(script_error("frame x quit") == "s.txt:1: frame 'x' is not a whole number >= 0");
+    CHECK(script_error("frame -1 quit") == "s.txt:1: frame '-1' is not a whole number >= 0");
+    CHECK(script_error("frame 5 quit\nframe 4 quit") ==
+          "s.txt:2: frame 4 comes after frame 5; frames must not decrease");
+    CHECK(script_error("frame 1 jump") ==
+          "s.txt:1: unknown command 'jump' (set, key, screenshot, drop, quit)");
+    CHECK(script_error("frame 1 set ao-radius -2") ==
+          "s.txt:1: --ao-radius must be a finite number of metres > 0");
+    CHECK(script_error("frame 1 set ao-radius big") ==
+          "s.txt:1: ao-radius: 'big' is not a finite number");
+    CHECK(script_error("frame 1 set ao-radius 1 2") ==
+          "s.txt:1: set ao-radius takes 1 value(s), got 2");
+    CHECK(script_error("frame 1 set ao-layers 1.5") ==
+          "s.txt:1: ao-layers: '1.5' is not a whole number");
+    CHECK(script_error("frame 1 set ao-layers 3") == "s.txt:1: --ao-layers must be 1 or 2, got 3");
+    CHECK(script_error("frame 1 set radiosity-alpha 1") ==
+          "s.txt:1: --radiosity-alpha must be a number in [0, 1)");
+    CHECK(script_error("frame 1 set generator delay") ==
+          "s.txt:1: generator 'delay' is not one of peel, previous, reproject");
+    CHECK(script_error("frame 1 set light-colour 1 -1 1") ==
+          "s.txt:1: light-colour components must be >= 0");
+    CHECK(script_error("frame 1 set light-intensity -3") ==
+          "s.txt:1: light-intensity must be >= 0");
+    CHECK(script_error("frame 1 set").find("s.txt:1: set needs a setting name and a value") == 0);
+    CHECK(script_error("frame 1 set speed 3")
+              .find("s.txt:1: unknown setting 'speed' (known: "
+                    "min-separation, exposure,") == 0);
+    CHECK(script_error("frame 1 key F13").find("s.txt:1: unknown key 'F13' (keys: V, Shift+V,") ==
+          0);
+    CHECK(script_error("frame 1 key") == "s.txt:1: key takes one key name");
+    CHECK(script_error("frame 1 screenshot") == "s.txt:1: screenshot takes one path");
+    CHECK(script_error("frame 1 drop a b") == "s.txt:1: drop takes one path");
+    CHECK(script_error("frame 1 quit now") == "s.txt:1: quit takes no arguments");
+    // The first bad line is reported, not a later one.
+    CHECK(script_error("frame 1 quit\n\n# fine\nframe 2 nope\nframe 1 quit") ==
+          "s.txt:4: unknown command 'nope' (set, key, screenshot, drop, quit)");
+}
+
+TEST_CASE("window: a bad --script stops deepgi before a window opens", "[runtime][window]") {
+    const auto dir = spiral::test::make_scratch_dir("deepgi-script");
+    const auto script = dir / "bad.txt";
+    std::ofstream(script) << "frame 0 set exposure 0\n";
+    const auto errors = dir / "stderr.txt";
+    // No DISPLAY: reaching the window would fail with a different message.
+    const int raw =
+        std::system(fmt::format("env -u DISPLAY '{}' --size 64x36 --script '{}' 2> '{}'",
+                                DEEPGI_EXECUTABLE, script.string(), errors.string())
+                        .c_str());
+    REQUIRE(WIFEXITED(raw));
+    CHECK(WEXITSTATUS(raw) == 2);
+    CHECK(spiral::test::read_file(errors) ==
+          fmt::format("deepgi: error: {}:1: --exposure must be a finite number > 0\n",
+                      script.string()));
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("window: every table setting is a deepgi option, sliders stay valid",
+          "[runtime][window]") {
+    const auto dir = spiral::test::make_scratch_dir("deepgi-help");
+    const auto help_file = dir / "help.txt";
+    REQUIRE(std::system(
+                fmt::format("'{}' --help > '{}'", DEEPGI_EXECUTABLE, help_file.string()).c_str()) ==
+            0);
+    const std::string help = spiral::test::read_file(help_file);
+    std::set<std::string_view> names;
+    for (const NumericSetting& setting : numeric_settings()) {
+        INFO(setting.name);
+        CHECK(names.insert(setting.name).second);
+        CHECK(find_numeric_setting(setting.name) == &setting);
+        // --help shows the option with its default (the table's getter of a
+        // default RenderSettings).
+        CHECK(help.find(fmt::format("--{} ", setting.name)) != std::string::npos);
+        const RenderSettings defaults;
+        for (float end : {setting.slider_min, setting.slider_max}) {
+            RenderSettings settings;
+            setting.set(settings, end);
+            CHECK(setting.get(settings) == end);
+            CHECK_NOTHROW(validate(settings));
+        }
+        CHECK(setting.get(defaults) >= setting.slider_min);
+        CHECK(setting.get(defaults) <= setting.slider_max);
+    }
+    CHECK(find_numeric_setting("no-such") == nullptr);
+    // The help lists every key of the table and says what leaving out --headless does.
+    for (const KeyBinding& binding : key_bindings())
+        CHECK(help.find(fmt::format("\n  {:<8} {}", binding.key, binding.description)) !=
+              std::string::npos);
+    CHECK(help.find("Without --headless it opens an interactive window") != std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("window: keys change the settings they name and keep them valid", "[runtime][window]") {
+    std::set<std::string_view> keys;
+    for (const KeyBinding& binding : key_bindings()) {
+        CHECK(keys.insert(binding.key).second);
+        CHECK(find_key_binding(binding.key) == &binding);
+    }
+    RenderSettings settings;
+    KeyState state;
+    REQUIRE(apply_key_action(KeyAction::ao_radius_up, settings, state));
+    CHECK(settings.ao.radius == Approx(0.5f * 1.25f));
+    apply_key_action(KeyAction::exposure_down, settings, state);
+    CHECK(settings.exposure == Approx(1.0f / 1.25f));
+    apply_key_action(KeyAction::next_generator, settings, state);
+    CHECK(settings.generator == Generator::previous);
+    apply_key_action(KeyAction::previous_view, settings, state);
+    CHECK(settings.view == DebugView::radiosity_confidence);  // wraps to the table's end
+    apply_key_action(KeyAction::next_view, settings, state);
+    CHECK(settings.view == DebugView::final_image);
+    apply_key_action(KeyAction::toggle_layers, settings, state);
+    CHECK(settings.ao.layers == 1);
+    CHECK(settings.radiosity.layers == 1);
+    apply_key_action(KeyAction::toggle_temporal, settings, state);
+    CHECK(settings.radiosity.alpha == 0.0f);
+    apply_key_action(KeyAction::toggle_temporal, settings, state);
+    CHECK(settings.radiosity.alpha == RadiositySettings{}.alpha);
+    // The window's own actions leave the settings alone.
+    const RenderSettings before = settings;
+    CHECK_FALSE(apply_key_action(KeyAction::screenshot, settings, state));
+    CHECK(settings.exposure == before.exposure);
+    // A key never makes the settings invalid: radius steps stop short of 0.
+    for (int i = 0; i < 2000; ++i) apply_key_action(KeyAction::ao_radius_down, settings, state);
+    CHECK(settings.ao.radius > 0.0f);
+    CHECK_NOTHROW(validate(settings));
+}
+
+TEST_CASE("window: at 5 fps a held key moves no further per step than at 20 fps",
+          "[runtime][window]") {
+    const float speed = 2.0f;  // m/s
+    // 60 fps: the step is speed * frame time, so a second of frames covers 2 m.
+    float sixty = 0.0f;
+    for (int i = 0; i < 60; ++i) sixty += fly_step(1.0f / 60.0f, speed);
+    CHECK(sixty == Approx(2.0f).epsilon(1e-5));
+    // 5 fps: each 200 ms step is capped at 50 ms, 10 cm here, so a wall
+    // thicker than 10 cm cannot be skipped in one step.
+    CHECK(fly_step(0.2f, speed) == Approx(0.1f));
+    CHECK(fly_step(3.0f, speed) == Approx(0.1f));  // a stall is no jump either
+    CHECK(fly_step(0.0f, speed) == 0.0f);
+    CHECK(fly_step(-1.0f, speed) == 0.0f);
+    CHECK(fly_step(std::nanf(""), speed) == 0.0f);
+}
+
+TEST_CASE("window: set commands edit the light", "[runtime][window]") {
+    RenderSettings settings;
+    KeyLight light;
+    light.kind = LightKind::directional;
+    // Pitch first: the default light points straight down, where yaw is
+    // undefined (a set of yaw there would be lost to the pole).
+    apply_set_command("light-pitch", {"30"}, settings, light);
+    apply_set_command("light-yaw", {"90"}, settings, light);
+    // Yaw 90 degrees about +Y from -Z is +X; pitch 30 degrees below the horizon.
+    CHECK(light.direction.x == Approx(std::cos(glm::radians(30.0f))));
+    CHECK(light.direction.y == Approx(-0.5f));
+    CHECK(light.direction.z == Approx(0.0f).margin(1e-6));
+    apply_set_command("light-intensity", {"7.5"}, settings, light);
+    CHECK(light.intensity == 7.5f);
+    CHECK_THROWS_WITH(apply_set_command("light-position", {"0", "1", "0"}, settings, light),
+                      "light-position: the key light is directional (it has no position)");
+    light.kind = LightKind::spot;
+    apply_set_command("light-position", {"0", "1", "-2"}, settings, light);
+    CHECK(light.position == glm::vec3(0.0f, 1.0f, -2.0f));
+    apply_set_command("view", {"ao-raw"}, settings, light);
+    CHECK(settings.view == DebugView::ao_raw);
+    const LightAngles angles = light_angles(light_direction({0.4f, 0.7f}));
+    CHECK(angles.yaw == Approx(0.4f));
+    CHECK(angles.pitch == Approx(0.7f));
+}
