@@ -18,7 +18,10 @@ in GBufferVertex {
 layout(location = DEEPGI_GBUFFER_OUTPUT_NORMAL) out vec2 out_normal;
 layout(location = DEEPGI_GBUFFER_OUTPUT_ALBEDO) out vec4 out_albedo;
 layout(location = DEEPGI_GBUFFER_OUTPUT_EMISSIVE) out vec3 out_emissive;
-layout(location = DEEPGI_GBUFFER_OUTPUT_MOTION) out vec2 out_motion;
+// xy: pixels moved since last frame; z: the point's linear depth in the
+// previous camera (0: it was behind that camera), which temporal filters
+// compare with their stored depth to reject history.
+layout(location = DEEPGI_GBUFFER_OUTPUT_MOTION) out vec4 out_motion;
 
 // Layer-0 depth (stored near/z): this frame's for peel, the previous frame's otherwise.
 layout(binding = DEEPGI_UNIT_REFERENCE_DEPTH) uniform sampler2D reference_depth;
@@ -63,13 +66,13 @@ void main() {
   out_normal = encode_normal(normalize(fragment_in.camera_normal));
   out_albedo = vec4(srgb_encode(albedo), 1.0);
 
-  // Emissive and motion are read from layer 0 only.
+  // Emissive is read from layer 0 only; motion from both (temporal filters).
   out_emissive = second_layer ? vec3(0.0) : emissive_factor;
-  vec2 motion = vec2(0.0);
-  if (!second_layer && fragment_in.previous_clip.w > 0.0) {
+  vec4 motion = vec4(0.0);
+  if (fragment_in.previous_clip.w > 0.0) {
     vec2 current_ndc = fragment_in.current_clip.xy / fragment_in.current_clip.w;
     vec2 previous_ndc = fragment_in.previous_clip.xy / fragment_in.previous_clip.w;
-    motion = (current_ndc - previous_ndc) * 0.5 * frame.internal_size.xy;
+    motion = vec4((current_ndc - previous_ndc) * 0.5 * frame.internal_size.xy, fragment_in.previous_clip.w, 0.0);
   }
   out_motion = motion;
 }

@@ -95,6 +95,8 @@ void main() {
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
   mat2 rotation = pixel_rotation(uvec2(pixel));
+  // This frame's step of the rotation cycle (frame.cpp), which ao_temporal.frag averages over.
+  rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
   ivec2 size = ivec2(frame.internal_size.xy);
 
   // The bias grows with the pixel footprint at X (metres per pixel at this

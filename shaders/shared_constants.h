@@ -33,10 +33,20 @@
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER0 17       // this frame's E of layer 0 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER1 18       // this frame's E of layer 1 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY 19      // last frame's depth + normal key (temporal filter)
+#define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1 20  // the same for layer 1 (prepare pass)
+#define DEEPGI_UNIT_RADIOSITY_RADIANCE 21  // RGBA16F array with MIPs: prepared outgoing radiance B per layer
+#define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
+#define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
 #define DEEPGI_IMAGE_PYRAMID_DESTINATION 1
+#define DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE 2
+#define DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION 3
+
+// Temporal filters rotate the gather patterns through this many angles, one
+// per frame, then repeat (FrameConstants.temporal_phase counts them).
+#define DEEPGI_TEMPORAL_CYCLE 8
 
 // Vertex attribute locations.
 #define DEEPGI_ATTRIBUTE_POSITION 0
@@ -63,7 +73,7 @@
 #define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
 #define DEEPGI_UNIFORM_RADIOSITY_PARAMETERS 26  // vec4: radius (m), boost amount, tap clamp, rho_prop
 #define DEEPGI_UNIFORM_RADIOSITY_LAYERS 27      // int: 1 or 2 layers gathered
-#define DEEPGI_UNIFORM_RADIOSITY_ANGLE 28       // float: this frame's extra rotation of the taps (rad)
+#define DEEPGI_UNIFORM_RADIOSITY_MIP 28         // vec2: q (px) and deepest MIP level the taps may read
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 
@@ -95,8 +105,8 @@ struct FrameConstants {
 
   int light_kind;  // DEEPGI_LIGHT_*
   int debug_view;  // DEEPGI_VIEW_*
-  int padding0;
-  int padding1;
+  int temporal_phase;    // frames since history was invalidated, modulo DEEPGI_TEMPORAL_CYCLE
+  float temporal_angle;  // rad, this frame's extra rotation of the gather patterns (0 at phase 0)
 };
 
 #endif

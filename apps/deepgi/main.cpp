@@ -262,6 +262,10 @@ int main(int argc, char** argv) {
                    "Deep radiosity: share of last frame's indirect light in the next gather, "
                    "[0, 1] (multiple bounces)")
         ->capture_default_str();
+    app.add_option("--ao-alpha", options.ao.alpha,
+                   "AO temporal filter's history weight across rotation cycles in [0, 1) (0: raw "
+                   "SAO of each frame)")
+        ->capture_default_str();
     app.add_option("--radiosity-alpha", options.radiosity.alpha,
                    "Deep radiosity: temporal filter's history weight in [0, 1) (0: raw gather)")
         ->capture_default_str();

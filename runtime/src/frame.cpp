@@ -48,17 +48,19 @@ glm::mat4 guard_band_projection(const Camera& camera, const RenderSettings& sett
 
 const std::vector<PassFactory>& default_pass_list() {
     static const std::vector<PassFactory> passes = {
-        make_shadow_pass,          //
-        make_gbuffer_pass,         //
-        make_direct_light_pass,    //
-        make_depth_pyramid_pass,   //
-        make_sao_pass,             //
-        make_ao_blur_pass,         //
-        make_radiosity_pass,       //
-        make_radiosity_blur_pass,  //
-        make_compose_pass,         //
-        make_tonemap_pass,         // final image only
-        make_debug_view_pass,      // any other view
+        make_shadow_pass,             //
+        make_gbuffer_pass,            //
+        make_direct_light_pass,       //
+        make_depth_pyramid_pass,      //
+        make_sao_pass,                //
+        make_ao_temporal_pass,        //
+        make_ao_blur_pass,            //
+        make_radiosity_prepare_pass,  //
+        make_radiosity_pass,          //
+        make_radiosity_blur_pass,     //
+        make_compose_pass,            //
+        make_tonemap_pass,            // final image only
+        make_debug_view_pass,         // any other view
     };
     return passes;
 }
@@ -75,6 +77,7 @@ struct RendererState {
     PassTimer timer{true};
     std::optional<Camera> last_camera;   // converts dumped depth to metres
     std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
+    int temporal_frame = 0;  // frames since history was invalidated, modulo the rotation cycle
 
     RendererState(const Scene& source, const RenderSettings& render_settings,
                   const ShaderLoader& shader_loader)
@@ -126,6 +129,19 @@ void resize_passes(RendererState& state) {
     }
 }
 
+// This frame's extra rotation of the gather patterns. The angles cycle through
+// DEEPGI_TEMPORAL_CYCLE evenly spaced values, taken in bit-reversed order so
+// that every prefix of a cycle is spread around the circle too. Because the
+// sequence repeats, a static camera sees the same DEEPGI_TEMPORAL_CYCLE raw
+// results again and again, and a filter that averages whole cycles stops
+// changing (temporal_accumulation.glsl); an endless sequence (golden ratio)
+// would keep feeding it new noise.
+float temporal_angle(int phase) {
+    static_assert(DEEPGI_TEMPORAL_CYCLE == 8, "the bit reversal below is for 3 bits");
+    const int reversed = ((phase & 1) << 2) | (phase & 2) | ((phase >> 2) & 1);
+    return float(reversed) * (6.2831853f / float(DEEPGI_TEMPORAL_CYCLE));
+}
+
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
                                     const Camera& previous) {
     const RenderSettings& settings = state.settings;
@@ -170,6 +186,8 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.light_kind =
         light.kind == LightKind::directional ? DEEPGI_LIGHT_DIRECTIONAL : DEEPGI_LIGHT_SPOT;
     constants.debug_view = static_cast<int>(settings.view);
+    constants.temporal_phase = state.temporal_frame % DEEPGI_TEMPORAL_CYCLE;
+    constants.temporal_angle = temporal_angle(constants.temporal_phase);
     return constants;
 }
 
@@ -184,7 +202,10 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     FrameResources& frame = state.frame;
     if (motion == CameraMotion::cut) frame.invalidate_history("camera cut");
     frame.camera = camera;
-    if (!frame.history_valid()) frame.previous_camera = camera;
+    if (!frame.history_valid()) {
+        frame.previous_camera = camera;
+        state.temporal_frame = 0;
+    }
     const FrameConstants constants = make_frame_constants(state, camera, frame.previous_camera);
     glNamedBufferSubData(state.frame_constants.get(), 0, sizeof(constants), &constants);
     glBindBufferBase(GL_UNIFORM_BUFFER, DEEPGI_UBO_FRAME, state.frame_constants.get());
@@ -201,6 +222,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     frame.end_frame();
     state.last_camera = camera;
+    state.temporal_frame = (state.temporal_frame + 1) % DEEPGI_TEMPORAL_CYCLE;
 }
 
 // Every enabled pass's outputs, in pass order.

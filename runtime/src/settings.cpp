@@ -151,6 +151,8 @@ void validate(const RenderSettings& settings) {
         throw InputError("--radiosity-boost must be a number in [0, 1]");
     if (!finite_positive(radiosity.tap_clamp))
         throw InputError("--radiosity-clamp must be a finite number > 0");
+    if (!std::isfinite(settings.ao.alpha) || settings.ao.alpha < 0.0f || settings.ao.alpha >= 1.0f)
+        throw InputError("--ao-alpha must be a number in [0, 1)");
     if (!std::isfinite(radiosity.alpha) || radiosity.alpha < 0.0f || radiosity.alpha >= 1.0f)
         throw InputError("--radiosity-alpha must be a number in [0, 1)");
     if (!unit_interval(radiosity.rho_prop))

@@ -115,6 +115,9 @@ struct AoSettings {
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
     AoMethod method = AoMethod::solid_angle;
+    // Temporal filter: weight of the history across whole rotation cycles
+    // (0: the raw SAO result of each frame); see docs/radiosity.md.
+    float alpha = 0.85f;
 };
 
 // Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
@@ -124,8 +127,8 @@ struct RadiositySettings {
     float boost = 0.0f;       // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
     float tap_clamp = 16.0f;  // largest contribution B(Y) * cos of one sample, per channel
     float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
-    float alpha = 0.85f;      // temporal filter: weight of the reprojected history (0: raw gather)
-    int layers = 2;           // 1: layer 0 only, 2: both deep G-buffer layers
+    float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
+    int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
 };
 
 struct RenderSettings {

@@ -34,7 +34,7 @@ public:
     }
 
     void run(FrameResources& frame) override {
-        run_bilateral_blur(blur_, frame.texture("ao.raw"), frame.texture("depth_pyramid"),
+        run_bilateral_blur(blur_, frame.texture("ao.temporal"), frame.texture("depth_pyramid"),
                            frame.texture("gbuffer.normal"), frame.empty_vertex_array);
         frame.publish("ao.blurred", blur_.output.get());
     }

@@ -19,7 +19,7 @@ struct GBufferTargets {
     gl::Texture normal;    // RG16F array, octahedral camera-space normal
     gl::Texture albedo;    // RGBA8 array, sRGB-encoded by the shader
     gl::Texture emissive;  // R11F_G11F_B10F array (layer 0 read)
-    gl::Texture motion;    // RG16F array, pixels moved since last frame (layer 0 read)
+    gl::Texture motion;    // RGBA16F array: pixels moved since last frame, previous linear depth
     gl::Texture depth;     // DEPTH_COMPONENT32F array, near/z (reversed, infinite)
 };
 
@@ -37,7 +37,11 @@ void attach_layer(const gl::Framebuffer& framebuffer, const GBufferTargets& targ
                                        targets.motion.get(), 0, 0);
         glNamedFramebufferDrawBuffers(fb, 4, all_outputs);
     } else {
-        const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE, GL_NONE};
+        // Layer 1 has motion (temporal filters) but no emissive.
+        glNamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_MOTION,
+                                       targets.motion.get(), 0, layer);
+        const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE,
+                                  GL_COLOR_ATTACHMENT0 + DEEPGI_GBUFFER_OUTPUT_MOTION};
         glNamedFramebufferDrawBuffers(fb, 4, outputs);
     }
 }
@@ -75,7 +79,7 @@ public:
         // carry a second layer that nothing reads.
         targets.emissive =
             gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, DEEPGI_LAYER_COUNT);
-        targets.motion = gl::create_texture_array(GL_RG16F, width_, height_, DEEPGI_LAYER_COUNT);
+        targets.motion = gl::create_texture_array(GL_RGBA16F, width_, height_, DEEPGI_LAYER_COUNT);
         targets.depth =
             gl::create_texture_array(GL_DEPTH_COMPONENT32F, width_, height_, DEEPGI_LAYER_COUNT);
         label_texture(targets.normal, name(), "normal");
@@ -124,13 +128,11 @@ public:
             draw_scene(scene, peel_first_layer_.get());
             copy_layer0_depth(layer0_depth.written());
 
-            clear_gbuffer(second_layer_framebuffer_, 2);
-            // The second layer's emissive and motion are never written by peel; clear
-            // them too so every generator leaves the same unused layer behind.
+            clear_gbuffer(second_layer_framebuffer_, 4);
+            // The second layer's emissive is never written by peel; clear it too
+            // so every generator leaves the same unused layer behind.
             const float zero[4] = {0, 0, 0, 0};
             glClearTexSubImage(targets_.emissive.get(), 0, 0, 0, 1, width_, height_, 1, GL_RGBA,
-                               GL_FLOAT, zero);
-            glClearTexSubImage(targets_.motion.get(), 0, 0, 0, 1, width_, height_, 1, GL_RGBA,
                                GL_FLOAT, zero);
             glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, layer0_depth.written());
             glBindFramebuffer(GL_FRAMEBUFFER, second_layer_framebuffer_.get());

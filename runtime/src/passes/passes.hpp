@@ -15,6 +15,8 @@ std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const S
 std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_sao_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_ao_blur_pass(const ShaderLoader& loader, const Scene& scene);
+std::unique_ptr<Pass> make_ao_temporal_pass(const ShaderLoader& loader, const Scene& scene);
+std::unique_ptr<Pass> make_radiosity_prepare_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_blur_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene);

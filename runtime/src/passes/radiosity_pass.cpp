@@ -1,15 +1,14 @@
 // Deep radiosity (design.md 3, steps 6 to 8): the gather of radiosity.frag
-// for both G-buffer layers into raw E + confidence, the temporal filter of
-// radiosity_temporal.frag into a ping-pong history pair per layer (whose
-// previous slot also feeds the next frame's bounce), and the bilateral blur
-// of layer 0's filtered result that the compose pass reads.
+// for both G-buffer layers into raw E + confidence (reading what the prepare
+// pass built), the temporal filter of radiosity_temporal.frag into ping-pong
+// history pairs per layer (whose previous slot also feeds the next frame's
+// bounce through the prepare pass), and the bilateral blur of layer 0's
+// filtered result that the compose pass reads.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
 #include <glm/glm.hpp>
-
-#include <cmath>
 
 namespace deepgi {
 
@@ -18,16 +17,11 @@ namespace {
 std::string history_name(int layer) {
     return fmt::format("radiosity-layer{}", layer);
 }
+std::string partial_name(int layer) {
+    return fmt::format("radiosity-partial-layer{}", layer);
+}
 std::string key_name(int layer) {
     return fmt::format("radiosity-key-layer{}", layer);
-}
-
-// Per-frame rotation of the tap pattern: frame k adds 2*pi*frac(k * 0.618...),
-// the golden-ratio sequence, whose angles stay evenly spread for any k.
-float frame_angle(int frame_index) {
-    const double golden = 0.6180339887498949;
-    const double turns = double(frame_index) * golden;
-    return float((turns - std::floor(turns)) * 6.283185307179586);
 }
 
 class RadiosityPass final : public Pass {
@@ -45,9 +39,11 @@ public:
             raw_[layer] = gl::create_texture_2d(GL_RGBA16F, width_, height_);
             label_texture(raw_[layer], name(), fmt::format("raw layer {}", layer));
             raw_framebuffers_[layer] = framebuffer_for(raw_[layer], "radiosity raw");
-            // Allocated together, so both pairs write the same slot each frame.
+            // Allocated together, so all pairs write the same slot each frame.
             HistoryPair& irradiance =
                 frame.allocate_history(history_name(layer), GL_RGBA16F, width_, height_);
+            HistoryPair& partial =
+                frame.allocate_history(partial_name(layer), GL_RGBA16F, width_, height_);
             HistoryPair& key = frame.allocate_history(key_name(layer), GL_RGBA16F, width_, height_);
             for (int slot = 0; slot < 2; ++slot) {
                 gl::Framebuffer& framebuffer = framebuffers_[layer][slot];
@@ -55,9 +51,12 @@ public:
                 glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0,
                                           irradiance.slots[slot].get(), 0);
                 glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1,
+                                          partial.slots[slot].get(), 0);
+                glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT2,
                                           key.slots[slot].get(), 0);
-                const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-                glNamedFramebufferDrawBuffers(framebuffer.get(), 2, buffers);
+                const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                          GL_COLOR_ATTACHMENT2};
+                glNamedFramebufferDrawBuffers(framebuffer.get(), 3, buffers);
                 gl::check_framebuffer(framebuffer, "radiosity temporal");
             }
         }
@@ -65,22 +64,18 @@ public:
 
     void run(FrameResources& frame) override {
         const RadiositySettings& settings = frame.settings->radiosity;
-        if (!frame.history_valid()) frame_index_ = 0;
         const GLuint gather = gather_.get();
         glUseProgram(gather);
-        glProgramUniform4f(gather, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, settings.radius,
-                           settings.boost, settings.tap_clamp, settings.rho_prop);
+        glProgramUniform4f(gather, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, settings.radius, 0.0f,
+                           settings.tap_clamp, 0.0f);
         glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_LAYERS, settings.layers);
-        glProgramUniform1f(gather, DEEPGI_UNIFORM_RADIOSITY_ANGLE, frame_angle(frame_index_));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
-                          frame.history(history_name(0)).previous());
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1,
-                          frame.history(history_name(1)).previous());
+        // The prepare pass builds as many levels as the depth pyramid.
+        glProgramUniform2f(gather, DEEPGI_UNIFORM_RADIOSITY_MIP, frame.settings->ao.q,
+                           float(frame.integer("depth_pyramid.max_level")));
+        glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RADIANCE,
+                          frame.texture("radiosity_prepare.radiance"));
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_NORMAL, frame.texture("radiosity_prepare.normal"));
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
             glProgramUniform1i(gather, DEEPGI_UNIFORM_LAYER, layer);
@@ -90,14 +85,14 @@ public:
         const GLuint temporal = temporal_.get();
         glUseProgram(temporal);
         glProgramUniform1f(temporal, DEEPGI_UNIFORM_RADIOSITY_ALPHA, settings.alpha);
-        const glm::mat4 to_previous = camera_view_matrix(frame.previous_camera) *
-                                      glm::inverse(camera_view_matrix(frame.camera));
-        glProgramUniformMatrix4fv(temporal, DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS, 1, GL_FALSE,
-                                  &to_previous[0][0]);
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             const HistoryPair& irradiance = frame.history(history_name(layer));
             glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, raw_[layer].get());
             glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0, irradiance.previous());
+            glBindTextureUnit(DEEPGI_UNIT_HISTORY_PARTIAL,
+                              frame.history(partial_name(layer)).previous());
             glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY,
                               frame.history(key_name(layer)).previous());
             begin_fullscreen(framebuffers_[layer][irradiance.written_slot].get(), width_, height_);
@@ -107,7 +102,6 @@ public:
             frame.publish(fmt::format("radiosity.raw.layer{}", layer), raw_[layer].get());
             frame.publish(fmt::format("radiosity.irradiance.layer{}", layer), irradiance.written());
         }
-        ++frame_index_;
     }
 
     std::vector<PassOutput> outputs(const FrameResources&) const override {
@@ -136,9 +130,8 @@ private:
     gl::Program temporal_;
     gl::Texture raw_[DEEPGI_LAYER_COUNT];  // this frame's gather, before the temporal filter
     gl::Framebuffer raw_framebuffers_[DEEPGI_LAYER_COUNT];
-    gl::Framebuffer framebuffers_[DEEPGI_LAYER_COUNT][2];  // [layer][history slot]: E + key
+    gl::Framebuffer framebuffers_[DEEPGI_LAYER_COUNT][2];  // [layer][slot]: E, partial, key
     GLuint written_[DEEPGI_LAYER_COUNT] = {};              // this frame's filtered E + confidence
-    int frame_index_ = 0;  // frames since history was last invalidated
     int width_ = 0;
     int height_ = 0;
 };

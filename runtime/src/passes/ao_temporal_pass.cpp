@@ -1,0 +1,81 @@
+// Temporal filter of the ambient visibility (shaders/ao_temporal.frag): SAO's
+// raw result, whose taps rotate through a short cycle of angles, accumulated
+// over whole cycles with history found through the G-buffer's motion vectors.
+// The AO blur reads its result.
+#include "passes/passes.hpp"
+#include "shader_shared.hpp"
+
+namespace deepgi {
+
+namespace {
+
+constexpr const char* visibility_history = "ao-temporal";  // x: filtered, y: partial
+constexpr const char* key_history = "ao-temporal-key";
+
+class AoTemporalPass final : public Pass {
+public:
+    explicit AoTemporalPass(const ShaderLoader& loader)
+        : program_(build_fullscreen_program(loader, "ao_temporal.frag")) {}
+
+    std::string_view name() const override { return "ao_temporal"; }
+
+    void resize(FrameResources& frame) override {
+        width_ = frame.layout.internal_width;
+        height_ = frame.layout.internal_height;
+        // Allocated together, so both pairs write the same slot each frame.
+        HistoryPair& visibility =
+            frame.allocate_history(visibility_history, GL_RG16F, width_, height_);
+        HistoryPair& key = frame.allocate_history(key_history, GL_RGBA16F, width_, height_);
+        for (int slot = 0; slot < 2; ++slot) {
+            gl::Framebuffer& framebuffer = framebuffers_[slot];
+            framebuffer = gl::create_framebuffer();
+            glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0,
+                                      visibility.slots[slot].get(), 0);
+            glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1,
+                                      key.slots[slot].get(), 0);
+            const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+            glNamedFramebufferDrawBuffers(framebuffer.get(), 2, buffers);
+            gl::check_framebuffer(framebuffer, "ao temporal");
+        }
+    }
+
+    void run(FrameResources& frame) override {
+        const GLuint program = program_.get();
+        const HistoryPair& visibility = frame.history(visibility_history);
+        glUseProgram(program);
+        glProgramUniform1f(program, DEEPGI_UNIFORM_RADIOSITY_ALPHA, frame.settings->ao.alpha);
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
+        glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
+        glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
+        glBindTextureUnit(DEEPGI_UNIT_AO, visibility.previous());
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY, frame.history(key_history).previous());
+        begin_fullscreen(framebuffers_[visibility.written_slot].get(), width_, height_);
+        draw_fullscreen_triangle(frame.empty_vertex_array);
+        written_ = visibility.written();
+        frame.publish("ao.temporal", written_);
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        return {{.name = "ao-temporal",
+                 .texture = written_,
+                 .width = width_,
+                 .height = height_,
+                 .channels = 1}};
+    }
+
+private:
+    gl::Program program_;
+    gl::Framebuffer framebuffers_[2];  // per history slot: visibility + key
+    GLuint written_ = 0;               // this frame's slot
+    int width_ = 0;
+    int height_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_ao_temporal_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<AoTemporalPass>(loader);
+}
+
+}  // namespace deepgi

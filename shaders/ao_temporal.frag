@@ -1,0 +1,44 @@
+#version 450 core
+// Temporal filter of the ambient visibility: the raw SAO result of this frame
+// (its taps rotated by this frame's step of the cycle) accumulated with the
+// reprojected history over whole rotation cycles, exactly as the radiosity
+// temporal filter does (history_reprojection.glsl, temporal_accumulation.glsl).
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+#include "history_reprojection.glsl"
+#include "temporal_accumulation.glsl"
+
+layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
+layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
+layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D raw_visibility;
+// x: filtered visibility, y: this cycle's running mean so far
+layout(binding = DEEPGI_UNIT_AO) uniform sampler2D history_visibility;
+layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key;
+
+layout(location = DEEPGI_UNIFORM_RADIOSITY_ALPHA) uniform float alpha;
+
+layout(location = 0) out vec4 out_visibility;  // x: filtered, y: partial
+layout(location = 1) out vec4 out_key;         // history_reprojection.glsl
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float raw = texelFetch(raw_visibility, pixel, 0).r;
+  float depth = texelFetch(depth_pyramid, pixel, 0).r;
+  out_visibility = vec4(raw, raw, 0.0, 0.0);
+  out_key = vec4(0.0);
+  if (depth <= 0.0) return;
+  vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
+  ivec2 texel;
+  vec4 key;
+  Accumulation result;
+  vec4 raw4 = vec4(raw);
+  if (find_history(pixel, 0, normal, gbuffer_motion, history_key, texel, key)) {
+    vec2 history = texelFetch(history_visibility, texel, 0).xy;
+    result = accumulate(raw4, vec4(history.x), vec4(history.y), key.w, alpha);
+  } else {
+    result = accumulate(raw4, raw4, raw4, 0.0, alpha);
+  }
+  out_visibility = vec4(result.mean.x, result.partial.x, 0.0, 0.0);
+  out_key = history_key_for(depth, normal, result.count);
+}

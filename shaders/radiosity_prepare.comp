@@ -1,0 +1,97 @@
+#version 450 core
+// Radiosity prepare (design.md 3, steps 3 and 6): what the gather reads at a
+// tap, for both G-buffer layers, as rotated-grid MIP levels like the depth
+// pyramid, so far taps read a coarser level (fewer cache misses) and each tap
+// costs two fetches per layer instead of six.
+//
+// Level 0, per layer j: the outgoing radiance
+//   B = (direct + rho_prop * albedo / pi * E_prev) * boost(albedo) + emissive
+// (emissive on layer 0 only: the G-buffer stores none for layer 1), E_prev
+// being last frame's filtered E reprojected with the motion vectors
+// (history_reprojection.glsl; 0 where history is rejected, so a disoccluded
+// pixel starts with one bounce), and the octahedral normal.
+// Level m + 1 copies one texel of each 2x2 block of level m, the same corner
+// as depth_pyramid.comp (rotated_grid.glsl), so texel t of level m holds
+// radiance, normal and depth of one and the same level-0 pixel. Averaging
+// would mix the radiance of a foreground and a background.
+//
+// Variant PREPARE_BASE_LEVEL writes level 0; the other variant writes a level
+// from the level above it.
+#include "frame_constants.glsl"
+#include "gbuffer_encoding.glsl"
+#include "history_reprojection.glsl"
+#include "rotated_grid.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = DEEPGI_IMAGE_PYRAMID_DESTINATION, rgba16f) uniform writeonly image2DArray radiance_destination;
+layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION, rg16f) uniform writeonly image2DArray normal_destination;
+
+#ifdef PREPARE_BASE_LEVEL
+layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
+layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
+layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
+layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
+layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
+layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0) uniform sampler2D previous_irradiance0;
+layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1) uniform sampler2D previous_irradiance1;
+layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key0;
+layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1) uniform sampler2D history_key1;
+// x: unused, y: boost amount in [0, 1] (0: boost = 1), z: unused, w: rho_prop
+layout(location = DEEPGI_UNIFORM_RADIOSITY_PARAMETERS) uniform vec4 radiosity_parameters;
+#else
+layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rgba16f) uniform readonly image2DArray radiance_source;
+layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE, rg16f) uniform readonly image2DArray normal_source;
+#endif
+
+const float inv_pi = 0.31830989;
+
+#ifdef PREPARE_BASE_LEVEL
+// (max_c rho - min_c rho) / max_c rho blended with 1 by `amount`.
+float boost(vec3 rho, float amount) {
+  float high = max(rho.r, max(rho.g, rho.b));
+  float low = min(rho.r, min(rho.g, rho.b));
+  float saturation = high > 0.0 ? (high - low) / high : 0.0;
+  return mix(1.0, saturation, amount);
+}
+
+// Last frame's filtered E of the point seen at `pixel`, or 0 without history.
+vec3 previous_irradiance(ivec2 pixel, int layer, vec3 normal) {
+  ivec2 texel;
+  vec4 key;
+  if (layer == 0) {
+    if (!find_history(pixel, 0, normal, gbuffer_motion, history_key0, texel, key)) return vec3(0.0);
+    return texelFetch(previous_irradiance0, texel, 0).rgb;
+  }
+  if (!find_history(pixel, 1, normal, gbuffer_motion, history_key1, texel, key)) return vec3(0.0);
+  return texelFetch(previous_irradiance1, texel, 0).rgb;
+}
+#endif
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, imageSize(radiance_destination).xy))) return;
+  for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
+#ifdef PREPARE_BASE_LEVEL
+    ivec3 at = ivec3(texel, layer);
+    vec4 radiance = vec4(0.0);
+    vec2 encoded_normal = texelFetch(gbuffer_normal, at, 0).xy;
+    if (texelFetch(gbuffer_depth, at, 0).r > 0.0) {
+      float rho_prop = radiosity_parameters.w;
+      vec3 rho = srgb_decode(texelFetch(gbuffer_albedo, at, 0).rgb);
+      vec3 bounce = vec3(0.0);
+      if (rho_prop > 0.0) bounce = rho_prop * inv_pi * rho * previous_irradiance(texel, layer, decode_normal(encoded_normal));
+      radiance.rgb = (texelFetch(direct_light, at, 0).rgb + bounce) * boost(rho, radiosity_parameters.y);
+      if (layer == 0) radiance.rgb += texelFetch(gbuffer_emissive, at, 0).rgb;
+      radiance.a = 1.0;
+    }
+    imageStore(radiance_destination, at, radiance);
+    imageStore(normal_destination, at, vec4(encoded_normal, 0.0, 0.0));
+#else
+    ivec2 from = min(2 * texel + rotated_grid_corner(texel), imageSize(radiance_source).xy - 1);
+    imageStore(radiance_destination, ivec3(texel, layer), imageLoad(radiance_source, ivec3(from, layer)));
+    imageStore(normal_destination, ivec3(texel, layer), imageLoad(normal_source, ivec3(from, layer)));
+#endif
+  }
+}
