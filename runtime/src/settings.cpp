@@ -175,7 +175,7 @@ namespace {
 
 // Slider ranges sit inside validate()'s limits; where validate() has no upper
 // limit the slider stops at what is still useful in the built-in scenes.
-const std::array<NumericSetting, 16> numeric_table = {{
+const std::array<NumericSetting, 17> numeric_table = {{
     {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
      DEEPGI_FLOAT_FIELD(min_separation)},
     {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
@@ -192,6 +192,7 @@ const std::array<NumericSetting, 16> numeric_table = {{
      DEEPGI_INT_FIELD(ao.layers)},
     {"ao-max-mip", "max MIP level", "ao", true, 0.0f, float(limits::max_ao_mip_level), false,
      DEEPGI_INT_FIELD(ao.max_mip_level)},
+    {"ao-alpha", "temporal alpha", "ao", false, 0.0f, 0.99f, false, DEEPGI_FLOAT_FIELD(ao.alpha)},
     {"radiosity-radius", "radius (m)", "radiosity", false, 0.05f, 10.0f, true,
      DEEPGI_FLOAT_FIELD(radiosity.radius)},
     {"radiosity-boost", "boost", "radiosity", false, 0.0f, 1.0f, false,
