@@ -33,6 +33,7 @@
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER0 17       // this frame's E of layer 0 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER1 18       // this frame's E of layer 1 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY 19      // last frame's depth + normal key (temporal filter)
+#define DEEPGI_UNIT_EMISSIVE 20                   // a material's emissive texture (sRGB)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -42,6 +43,7 @@
 #define DEEPGI_ATTRIBUTE_POSITION 0
 #define DEEPGI_ATTRIBUTE_NORMAL 1
 #define DEEPGI_ATTRIBUTE_UV 2
+#define DEEPGI_ATTRIBUTE_COLOUR 3  // linear RGBA multiplying the base colour
 
 // G-buffer fragment outputs (colour attachment index).
 #define DEEPGI_GBUFFER_OUTPUT_NORMAL 0
@@ -55,6 +57,8 @@
 #define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
 #define DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION 3
 #define DEEPGI_UNIFORM_LAYER 4
+#define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
+#define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
 #define DEEPGI_UNIFORM_SAO_PARAMETERS 21   // vec4: world radius (m), bias (m), intensity, q (px)
 #define DEEPGI_UNIFORM_SAO_MAX_MIP 22      // int: deepest pyramid level a tap may read
