@@ -66,13 +66,15 @@ public:
     // A quad facing +Z (counter-clockwise seen from +Z), centre (x, y, z),
     // side `size`, with UV (0,0) at the lower left and (1,1) at the upper
     // right. `mode` 4 (triangles, indexed), 5 (strip) or 6 (fan).
+    // `uv_scale` multiplies the texture coordinates (2: the texture twice across).
     std::string quad(float x, float y, float z, float size, int material_index, int mode = 4,
-                     const std::string& extra_attributes = "") {
+                     const std::string& extra_attributes = "", float uv_scale = 1.0f) {
         const float h = size / 2;
         // Lower left, lower right, upper right, upper left.
         std::vector<std::array<float, 3>> corners = {
             {x - h, y - h, z}, {x + h, y - h, z}, {x + h, y + h, z}, {x - h, y + h, z}};
-        std::vector<std::array<float, 2>> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+        const float k = uv_scale;
+        std::vector<std::array<float, 2>> uvs = {{0, k}, {k, k}, {k, 0}, {0, 0}};
         std::string indices;
         if (mode == 5) {  // strip: LL LR UL UR
             std::swap(corners[2], corners[3]);

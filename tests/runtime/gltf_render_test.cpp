@@ -349,3 +349,113 @@ TEST_CASE("gltf render: the alpha mask cuts holes in both G-buffer layers for ev
         CHECK(near(rgb(frame.albedo1, solid1), {0, 0, 1}, 0.01f));
     }
 }
+
+namespace {
+
+// Scene "lights": two quads 1.5 m above and below the origin, the upper one
+// turned 45 degrees towards +X, the lower one towards -X, seen from
+// (0, 0, 10). `light` is a KHR_lights_punctual light placed at `x` with its
+// -Z turned to travel towards -X (x > 0) or +X (x < 0).
+std::string lights_file(const std::string& light, float x) {
+    GltfBuilder b;
+    const int white = b.material("{}");
+    const float s45 = std::sin(glm::radians(22.5f)), c45 = std::cos(glm::radians(22.5f));
+    b.mesh_node(b.quad(0, 0, 0, 1.6f, white),
+                fmt::format(R"(,"translation":[0,1.5,0],"rotation":[0,{},0,{}])", s45, c45));
+    b.mesh_node(b.quad(0, 0, 0, 1.6f, white),
+                fmt::format(R"(,"translation":[0,-1.5,0],"rotation":[0,{},0,{}])", -s45, c45));
+    b.light(light);
+    const float half_turn = x > 0 ? glm::radians(45.0f) : -glm::radians(45.0f);
+    b.node(fmt::format(
+        R"("translation":[{},1.5,0],"rotation":[0,{},0,{}],"extensions":{{"KHR_lights_punctual":{{"light":0}}}})",
+        x, std::sin(half_turn), std::cos(half_turn)));
+    b.use_extension("KHR_lights_punctual");
+    return b.json();
+}
+
+}  // namespace
+
+TEST_CASE("gltf render: directional and spot lights brighten the side facing them",
+          "[runtime][gltf][render]") {
+    HeadlessContext context;
+    const std::string sun = R"({"type":"directional","intensity":2049})";  // 3 W/m^2
+    const std::string spot =
+        R"({"type":"spot","intensity":34150,"spot":{"innerConeAngle":0.4,"outerConeAngle":0.6}})";
+    for (const auto& [name, light] : {std::pair{"directional", sun}, std::pair{"spot", spot}}) {
+        INFO(name);
+        for (float x : {8.0f, -8.0f}) {
+            INFO("light at x = " << x);
+            const Scene scene = load(lights_file(light, x));
+            REQUIRE(scene.key_light.kind ==
+                    (std::string(name) == "spot" ? LightKind::spot : LightKind::directional));
+            Camera camera;
+            camera.position = {0, 0, 10};
+            camera.vertical_fov = 0.8f;
+            const Frame frame = render(scene, camera);
+            const Pinhole pinhole{camera.position, camera.vertical_fov};
+            const glm::ivec2 upper = pinhole.pixel({0, 1.5f, 0}, frame.layout);
+            const glm::ivec2 lower = pinhole.pixel({0, -1.5f, 0}, frame.layout);
+            const float up = frame.light0.at(upper.x, upper.y, 0);
+            const float down = frame.light0.at(lower.x, lower.y, 0);
+            // From +X the upper quad faces the light, from -X the lower one.
+            const float lit = x > 0 ? up : down;
+            const float dark = x > 0 ? down : up;
+            CHECK(lit > 0.1f);
+            CHECK(dark < 0.1f * lit);
+        }
+    }
+}
+
+TEST_CASE("gltf render: a point light is named as dropped, the rest renders",
+          "[runtime][gltf][render]") {
+    const Scene scene = load(lights_file(R"({"type":"point","name":"bulb","intensity":100})", 8));
+    CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
+                     "dropped lights: 0 'bulb' (point)") == 1);
+    CHECK(scene.indices.size() == 12);
+}
+
+TEST_CASE("gltf render: base colour textures are read through their sampler's wrap and filter",
+          "[runtime][gltf][render]") {
+    HeadlessContext context;
+    GltfBuilder b;
+    // 2x1 texels, red then green; the texture twice across each quad.
+    const auto red_green = png(2, 1, {255, 0, 0, 255, 0, 255, 0, 255});
+    const int wraps[3] = {10497, 33071, 33648};  // repeat, clamp, mirrored repeat
+    for (int i = 0; i < 3; ++i) {
+        const int sampler = b.sampler(fmt::format(
+            R"({{"magFilter":9728,"minFilter":9728,"wrapS":{},"wrapT":33071}})", wraps[i]));
+        const int material = b.material(
+            fmt::format(R"({{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":{}}}}}}})",
+                        b.texture(red_green, sampler)));
+        b.mesh_node(b.quad(0, 2.0f - 2.0f * float(i), 0, 1.6f, material, 4, "", 2.0f));
+    }
+    const int linear = b.sampler(R"({"magFilter":9729,"minFilter":9729})");
+    const int blended = b.material(
+        fmt::format(R"({{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":{}}}}}}})",
+                    b.texture(red_green, linear)));
+    b.mesh_node(b.quad(3, 0, 0, 3.2f, blended));
+    const Scene scene = load(b.json());
+    Camera camera;
+    camera.position = {0, 0, 10};
+    camera.vertical_fov = 0.8f;
+    const Frame frame = render(scene, camera);
+    const Pinhole pinhole{camera.position, camera.vertical_fov};
+    const glm::vec3 red(1, 0, 0), green(0, 1, 0);
+    // u at 0.25, 0.75, 1.25, 1.75: texel 0, 1, then by wrap mode.
+    const glm::vec3 expected[3][4] = {{red, green, red, green},    // repeat
+                                      {red, green, green, green},  // clamp
+                                      {red, green, green, red}};   // mirrored
+    for (int i = 0; i < 3; ++i) {
+        INFO("wrap " << wraps[i]);
+        for (int k = 0; k < 4; ++k) {
+            const float x = -0.8f + 0.2f + 0.4f * float(k);
+            const glm::ivec2 p = pinhole.pixel({x, 2.0f - 2.0f * float(i), 0}, frame.layout);
+            CHECK(near(rgb(frame.albedo0, p), expected[i][k], 0.01f));
+        }
+    }
+    // Linear magnification halfway between the texel centres: half of each.
+    const glm::ivec2 middle = pinhole.pixel({3, 0, 0}, frame.layout);
+    const glm::vec3 mixed = rgb(frame.albedo0, middle);
+    CHECK(mixed.r == Approx(0.5f).margin(0.1f));
+    CHECK(mixed.g == Approx(0.5f).margin(0.1f));
+}
