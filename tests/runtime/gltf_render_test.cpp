@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
@@ -458,4 +459,112 @@ TEST_CASE("gltf render: base colour textures are read through their sampler's wr
     const glm::vec3 mixed = rgb(frame.albedo0, middle);
     CHECK(mixed.r == Approx(0.5f).margin(0.1f));
     CHECK(mixed.g == Approx(0.5f).margin(0.1f));
+}
+
+namespace {
+
+// The sample models of Debian's assimp-testmodels (Khronos glTF sample
+// models); absent packages skip with a message instead of failing.
+std::optional<fs::path> sample_model(const std::string& relative) {
+    const fs::path path = fs::path(DEEPGI_SAMPLE_MODELS) / relative;
+    if (fs::exists(path)) return path;
+    WARN("skipped: " << path.string()
+                     << " is absent (install assimp-testmodels: scripts/install-deps.sh)");
+    return std::nullopt;
+}
+
+// Where `camera` puts a world point, in internal pixels, from its yaw and
+// pitch as scene.hpp defines them and a textbook look-at and perspective.
+glm::vec2 project(const Camera& camera, glm::vec3 world, const FrameLayout& layout) {
+    const glm::vec3 forward(std::sin(camera.yaw) * std::cos(camera.pitch), std::sin(camera.pitch),
+                            -std::cos(camera.yaw) * std::cos(camera.pitch));
+    const glm::mat4 view = glm::lookAt(camera.position, camera.position + forward, {0, 1, 0});
+    const glm::mat4 projection = glm::perspective(
+        camera.vertical_fov, float(kWidth) / float(kHeight), camera.near_plane, 1e4f);
+    const glm::vec4 clip = projection * view * glm::vec4(world, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return {float(layout.guard) + (ndc.x * 0.5f + 0.5f) * kWidth,
+            float(layout.guard) + (ndc.y * 0.5f + 0.5f) * kHeight};
+}
+
+}  // namespace
+
+TEST_CASE("gltf render: the 2CylinderEngine sample fills its projected bounding box",
+          "[runtime][gltf][render][sample]") {
+    const auto path = sample_model("2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+    if (!path) return;
+    HeadlessContext context;
+    const Scene scene = load_gltf_scene(*path);
+    // Its bounding box from the file's accessors' own min / max would do too;
+    // the vertices' box is what every node transform has been applied to.
+    const Frame frame = render(scene, scene.default_camera);
+    glm::vec2 low(1e9f), high(-1e9f);
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? scene.bounds.max.x : scene.bounds.min.x,
+                          (corner & 2) ? scene.bounds.max.y : scene.bounds.min.y,
+                          (corner & 4) ? scene.bounds.max.z : scene.bounds.min.z);
+        const glm::vec2 pixel = project(scene.default_camera, p, frame.layout);
+        low = glm::min(low, pixel);
+        high = glm::max(high, pixel);
+    }
+    // The viewport part of the box.
+    const int g = frame.layout.guard;
+    const int x0 = std::max(g, int(std::floor(low.x)) - 1);
+    const int y0 = std::max(g, int(std::floor(low.y)) - 1);
+    const int x1 = std::min(g + kWidth - 1, int(std::ceil(high.x)) + 1);
+    const int y1 = std::min(g + kHeight - 1, int(std::ceil(high.y)) + 1);
+    REQUIRE(x1 - x0 > kWidth / 4);
+    int inside = 0, outside = 0;
+    for (int y = g; y < g + kHeight; ++y) {
+        for (int x = g; x < g + kWidth; ++x) {
+            if (frame.depth0.at(x, y) <= 0.0f) continue;
+            (x >= x0 && x <= x1 && y >= y0 && y <= y1 ? inside : outside) += 1;
+        }
+    }
+    CHECK(outside == 0);
+    // An engine is no box, but it fills much of its own.
+    CHECK(inside > (x1 - x0 + 1) * (y1 - y0 + 1) * 4 / 10);
+}
+
+TEST_CASE("gltf render: the BoxTextured sample shows its texture's colours",
+          "[runtime][gltf][render][sample]") {
+    const auto path = sample_model("BoxTextured-glTF/BoxTextured.gltf");
+    if (!path) return;
+    HeadlessContext context;
+    const Scene scene = load_gltf_scene(*path);
+    const Frame frame = render(scene, scene.default_camera);
+    // The texture's three commonest colours (quantised to 1/8), decoded here.
+    int width = 0, height = 0, channels = 0;
+    unsigned char* texels = stbi_load((path->parent_path() / "CesiumLogoFlat.png").string().c_str(),
+                                      &width, &height, &channels, 3);
+    REQUIRE(texels != nullptr);
+    std::map<int, int> histogram;
+    std::map<int, glm::vec3> sum;
+    for (int i = 0; i < width * height; ++i) {
+        const unsigned char* t = texels + 3 * i;
+        const int key = (t[0] >> 5) << 6 | (t[1] >> 5) << 3 | (t[2] >> 5);
+        ++histogram[key];
+        sum[key] += glm::vec3(srgb_to_linear(t[0] / 255.0f), srgb_to_linear(t[1] / 255.0f),
+                              srgb_to_linear(t[2] / 255.0f));
+    }
+    stbi_image_free(texels);
+    std::vector<std::pair<int, int>> common;
+    for (const auto& [key, count] : histogram) common.push_back({count, key});
+    std::sort(common.rbegin(), common.rend());
+    REQUIRE(common.size() >= 3);
+    int covered = 0;
+    for (int y = 0; y < frame.depth0.height; ++y)
+        for (int x = 0; x < frame.depth0.width; ++x) covered += frame.depth0.at(x, y) > 0.0f;
+    REQUIRE(covered > kWidth * kHeight / 10);
+    for (int rank = 0; rank < 3; ++rank) {
+        const glm::vec3 colour =
+            sum[common[std::size_t(rank)].second] / float(common[std::size_t(rank)].first);
+        INFO("texture colour " << colour.r << " " << colour.g << " " << colour.b);
+        int matching = 0;
+        for (int y = 0; y < frame.albedo0.height; ++y)
+            for (int x = 0; x < frame.albedo0.width; ++x)
+                if (frame.depth0.at(x, y) > 0.0f && near(rgb(frame.albedo0, {x, y}), colour, 0.06f))
+                    ++matching;
+        CHECK(matching > covered / 50);
+    }
 }
