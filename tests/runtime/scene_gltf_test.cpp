@@ -3,6 +3,7 @@
 // crafted here; the expected scene or refusal follows from its construction.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
+#include "gltf_builder.hpp"
 #include "gltf_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -503,4 +504,100 @@ TEST_CASE("gltf loader: the first directional or spot light is the key light, th
                      "dropped lights: 0 'bulb' (point), 2 'sun' (directional, one key light "
                      "only)") == 1);
     for (const auto& warning : scene.warnings) CHECK(!contains(warning, "ignored"));
+}
+
+TEST_CASE("gltf loader: COLOR_0 is read as float or normalised integers, other forms refused",
+          "[runtime][gltf]") {
+    // A quad (4 vertices) whose COLOR_0 repeats one colour given as `values`.
+    auto quad_with = [](auto values, int component_type, const std::string& type, bool normalized,
+                        int count = 4) {
+        GltfBuilder b;
+        const int colours = b.accessor(values, component_type, type, count, normalized);
+        b.mesh_node(b.quad(0, 0, 0, 1, -1, 4, fmt::format(R"(,"COLOR_0":{})", colours)));
+        return b.json();
+    };
+    auto repeated = [](auto one) {
+        std::vector<typename decltype(one)::value_type> all;
+        for (int v = 0; v < 4; ++v) all.insert(all.end(), one.begin(), one.end());
+        return all;
+    };
+    const auto floats = repeated(std::vector<float>{0.25f, 0.5f, 1.0f});
+    const auto bytes = repeated(std::vector<std::uint8_t>{255, 0, 51, 102});
+    const auto shorts = repeated(std::vector<std::uint16_t>{65535, 0, 13107, 0});
+    auto colours = [](const deepgi::Scene& scene) {
+        std::vector<glm::vec4> list;
+        for (const auto& vertex : scene.vertices) list.push_back(vertex.colour);
+        return list;
+    };
+    using V = std::vector<glm::vec4>;
+    CHECK(colours(load(quad_with(floats, 5126, "VEC3", false))) ==
+          V(6, glm::vec4(0.25f, 0.5f, 1.0f, 1.0f)));
+    CHECK(colours(load(quad_with(bytes, 5121, "VEC4", true))) ==
+          V(6, glm::vec4(1.0f, 0.0f, 0.2f, 0.4f)));
+    CHECK(colours(load(quad_with(shorts, 5123, "VEC4", true))) ==
+          V(6, glm::vec4(1.0f, 0.0f, 0.2f, 0.0f)));
+    // Without COLOR_0 the colour is white.
+    GltfBuilder plain;
+    plain.mesh_node(plain.quad(0, 0, 0, 1, -1));
+    CHECK(colours(load(plain.json())) == V(6, glm::vec4(1.0f)));
+    // Integers not normalised, signed, or two components: refused naming the accessor.
+    const std::string message =
+        "COLOR_0 (accessor 0) must be VEC3 or VEC4 of float, or of normalized unsigned byte or "
+        "short";
+    CHECK(contains(refusal(quad_with(bytes, 5121, "VEC4", false)), message));
+    CHECK(contains(refusal(quad_with(bytes, 5120, "VEC4", true)), message));
+    CHECK(contains(refusal(quad_with(floats, 5126, "VEC2", false, 4)), message));
+    CHECK(contains(refusal(quad_with(floats, 5126, "VEC3", false, 3)),
+                   "COLOR_0 and POSITION counts differ"));
+}
+
+TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read; bad values refused",
+          "[runtime][gltf]") {
+    auto with_material = [](const std::string& material, const std::string& sampler = "") {
+        GltfBuilder b;
+        const int s = sampler.empty() ? -1 : b.sampler(sampler);
+        const int texture = b.texture(encode_png(1, 1, {10, 20, 30, 40}), s);
+        const int m = b.material(
+            fmt::format(R"({{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":{}}}}},)"
+                        R"("emissiveTexture":{{"index":{}}}{}}})",
+                        texture, texture, material));
+        b.mesh_node(b.quad(0, 0, 0, 1, m));
+        return b.json();
+    };
+    const deepgi::Scene masked = load(with_material(R"(,"alphaMode":"MASK","alphaCutoff":0.3)"));
+    REQUIRE(masked.materials.size() == 1);
+    CHECK(masked.materials[0].alpha_cutoff == 0.3f);
+    CHECK(masked.materials[0].base_colour_texture == 0);
+    CHECK(masked.materials[0].emissive_texture == 0);  // one image, uploaded once
+    CHECK(masked.textures.size() == 1);
+    // MASK without a cutoff: the specification's 0.5. OPAQUE: no mask.
+    CHECK(load(with_material(R"(,"alphaMode":"MASK")")).materials[0].alpha_cutoff == 0.5f);
+    CHECK(load(with_material("")).materials[0].alpha_cutoff < 0.0f);
+    CHECK(contains(refusal(with_material(R"(,"alphaMode":"MASK","alphaCutoff":-1)")),
+                   "material 0: alphaCutoff must be a finite number >= 0"));
+    CHECK(contains(refusal(with_material(R"(,"alphaMode":"CUTOUT")")),
+                   "material 0: alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND"));
+
+    // No sampler: trilinear, repeat. A sampler: its values, for both textures.
+    const deepgi::TextureSampler defaults =
+        load(with_material("")).materials[0].base_colour_sampler;
+    CHECK(defaults == deepgi::TextureSampler{0x2601, 0x2703, 0x2901, 0x2901});
+    const deepgi::Scene sampled = load(
+        with_material("", R"({"magFilter":9728,"minFilter":9984,"wrapS":33071,"wrapT":33648})"));
+    const deepgi::TextureSampler expected{9728, 9984, 33071, 33648};
+    CHECK(sampled.materials[0].base_colour_sampler == expected);
+    CHECK(sampled.materials[0].emissive_sampler == expected);
+    CHECK(contains(refusal(with_material("", R"({"magFilter":9984})")),
+                   "sampler 0: magFilter 9984 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"minFilter":1})")),
+                   "sampler 0: minFilter 1 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"wrapS":9728})")),
+                   "sampler 0: wrapS 9728 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"wrapT":0})")),
+                   "sampler 0: wrapT 0 is not a valid value"));
+    // A texture naming a sampler that is not there.
+    std::string missing = with_material("");
+    const std::string source = R"({"source":0})";
+    missing.replace(missing.find(source), source.size(), R"({"source":0,"sampler":3})");
+    CHECK(contains(refusal(missing), "texture 0: sampler index out of range"));
 }
