@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <string>
 
@@ -549,6 +550,13 @@ TEST_CASE("gltf loader: COLOR_0 is read as float or normalised integers, other f
     CHECK(contains(refusal(quad_with(floats, 5126, "VEC2", false, 4)), message));
     CHECK(contains(refusal(quad_with(floats, 5126, "VEC3", false, 3)),
                    "COLOR_0 and POSITION counts differ"));
+    auto not_finite = floats;
+    not_finite[4] = std::numeric_limits<float>::quiet_NaN();
+    CHECK(contains(refusal(quad_with(not_finite, 5126, "VEC3", false)),
+                   "a COLOR_0 value is not finite"));
+    GltfBuilder dangling;
+    dangling.mesh_node(dangling.quad(0, 0, 0, 1, -1, 4, R"(,"COLOR_0":99)"));
+    CHECK(contains(refusal(dangling.json()), "accessor index out of range"));
 }
 
 TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read; bad values refused",
