@@ -9,6 +9,7 @@
 in GBufferVertex {
   vec3 camera_normal;
   vec2 uv;
+  vec4 colour;
   float camera_depth;
   float previous_camera_depth;
   vec4 current_clip;
@@ -30,6 +31,9 @@ layout(binding = DEEPGI_UNIT_BASE_COLOUR) uniform sampler2D base_colour_texture;
 layout(location = DEEPGI_UNIFORM_BASE_COLOUR_FACTOR) uniform vec4 base_colour_factor;
 layout(location = DEEPGI_UNIFORM_EMISSIVE_FACTOR) uniform vec3 emissive_factor;
 layout(location = DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE) uniform int has_base_colour_texture;
+layout(binding = DEEPGI_UNIT_EMISSIVE) uniform sampler2D emissive_texture;
+layout(location = DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE) uniform int has_emissive_texture;
+layout(location = DEEPGI_UNIFORM_ALPHA_CUTOFF) uniform float alpha_cutoff;
 
 float reference_linear_depth(ivec2 pixel) {
   return linear_depth_from_stored(texelFetch(reference_depth, pixel, 0).r, frame.camera_ray_scale.z);
@@ -59,15 +63,22 @@ void main() {
 #else
   bool second_layer = false;
 #endif
+  // glTF base colour: factor x texture x vertex colour, alpha included.
+  vec4 base_colour = base_colour_factor * fragment_in.colour;
+  if (has_base_colour_texture != 0) base_colour *= texture(base_colour_texture, fragment_in.uv);
+  // Sampled before any discard, where implicit derivatives are still defined.
+  vec3 emissive = emissive_factor;
+  if (has_emissive_texture != 0) emissive *= texture(emissive_texture, fragment_in.uv).rgb;
+  // An alpha-masked hole is no surface in either layer, so layer 1 sees through it too.
+  if (base_colour.a < alpha_cutoff) discard;
   if (second_layer && !is_separated_from_layer0()) discard;
 
-  vec3 albedo = base_colour_factor.rgb;
-  if (has_base_colour_texture != 0) albedo *= texture(base_colour_texture, fragment_in.uv).rgb;
+  vec3 albedo = base_colour.rgb;
   out_normal = encode_normal(normalize(fragment_in.camera_normal));
   out_albedo = vec4(srgb_encode(albedo), 1.0);
 
   // Emissive is read from layer 0 only; motion from both (temporal filters).
-  out_emissive = second_layer ? vec3(0.0) : emissive_factor;
+  out_emissive = second_layer ? vec3(0.0) : emissive;
   vec4 motion = vec4(0.0);
   if (fragment_in.previous_clip.w > 0.0) {
     vec2 current_ndc = fragment_in.current_clip.xy / fragment_in.current_clip.w;

@@ -7,6 +7,7 @@ layout(triangle_strip, max_vertices = 3) out;
 in GBufferVertex {
   vec3 camera_normal;
   vec2 uv;
+  vec4 colour;
   float camera_depth;
   float previous_camera_depth;
   vec4 current_clip;
@@ -16,6 +17,7 @@ in GBufferVertex {
 out GBufferVertex {
   vec3 camera_normal;
   vec2 uv;
+  vec4 colour;
   float camera_depth;
   float previous_camera_depth;
   vec4 current_clip;
@@ -26,6 +28,7 @@ void main() {
   for (int i = 0; i < 3; ++i) {
     vertex_out.camera_normal = vertex_in[i].camera_normal;
     vertex_out.uv = vertex_in[i].uv;
+    vertex_out.colour = vertex_in[i].colour;
     vertex_out.camera_depth = vertex_in[i].camera_depth;
     vertex_out.previous_camera_depth = vertex_in[i].previous_camera_depth;
     vertex_out.current_clip = vertex_in[i].current_clip;

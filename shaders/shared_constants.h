@@ -37,6 +37,7 @@
 #define DEEPGI_UNIT_RADIOSITY_RADIANCE 21  // RGBA16F array with MIPs: prepared outgoing radiance B per layer
 #define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
 #define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
+#define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -52,6 +53,7 @@
 #define DEEPGI_ATTRIBUTE_POSITION 0
 #define DEEPGI_ATTRIBUTE_NORMAL 1
 #define DEEPGI_ATTRIBUTE_UV 2
+#define DEEPGI_ATTRIBUTE_COLOUR 3  // linear RGBA multiplying the base colour
 
 // G-buffer fragment outputs (colour attachment index).
 #define DEEPGI_GBUFFER_OUTPUT_NORMAL 0
@@ -65,6 +67,8 @@
 #define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
 #define DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION 3
 #define DEEPGI_UNIFORM_LAYER 4
+#define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
+#define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
 #define DEEPGI_UNIFORM_SAO_PARAMETERS 21   // vec4: world radius (m), bias (m), intensity, q (px)
 #define DEEPGI_UNIFORM_SAO_MAX_MIP 22      // int: deepest pyramid level a tap may read

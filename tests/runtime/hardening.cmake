@@ -21,3 +21,15 @@ target_compile_definitions(deepgi_frame_limits_tests
                            PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_frame_limits_tests deepgi)
 catch_discover_tests(deepgi_frame_limits_tests PROPERTIES LABELS runtime TIMEOUT 120)
+
+# ---- glTF rendered end to end: built files and the Debian sample models ----
+add_executable(deepgi_gltf_render_tests ${CMAKE_CURRENT_LIST_DIR}/gltf_render_test.cpp)
+target_link_libraries(deepgi_gltf_render_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt
+                                                       PkgConfig::DEEPGI_TEST_STB)
+# glTF sample models shipped by Debian's assimp-testmodels (scripts/install-deps.sh).
+set(DEEPGI_SAMPLE_MODELS "/usr/share/assimp/models/glTF2"
+    CACHE PATH "Folder of the glTF sample models the render test draws")
+target_compile_definitions(deepgi_gltf_render_tests PRIVATE
+  DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>" DEEPGI_SAMPLE_MODELS="${DEEPGI_SAMPLE_MODELS}")
+add_dependencies(deepgi_gltf_render_tests deepgi)
+catch_discover_tests(deepgi_gltf_render_tests PROPERTIES LABELS runtime TIMEOUT 300)

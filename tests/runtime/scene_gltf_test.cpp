@@ -3,6 +3,7 @@
 // crafted here; the expected scene or refusal follows from its construction.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
+#include "gltf_builder.hpp"
 #include "gltf_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <string>
 
@@ -180,7 +182,7 @@ TEST_CASE("gltf loader: texture size and decoded bytes are limited before decodi
     REQUIRE(scene.textures[0].height == 2);
     REQUIRE(scene.textures[0].rgba8.size() == rgba.size());
     for (std::size_t i = 0; i < rgba.size(); ++i)
-        REQUIRE(scene.textures[0].rgba8[i] == ((i % 4 == 3) ? 255 : rgba[i]));
+        REQUIRE(scene.textures[0].rgba8[i] == rgba[i]);  // alpha too: it feeds the mask
 
     SceneLimits side;
     side.texture_side = 2;
@@ -456,13 +458,15 @@ TEST_CASE("gltf loader: everything ignored is named in one summary line", "[runt
         R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
         R"("samplers":[{"input":0,"output":0}]}],)"
         R"("materials":[{"alphaMode":"MASK","normalTexture":{"index":0}}])";
+    // MASK, COLOR_0 and emissive textures are read, so they are not listed;
+    // normal textures are skipped (no tangents in the G-buffer) and are.
     const deepgi::Scene scene = load(triangle_gltf(file));
     std::vector<std::string> summaries;
     for (const auto& warning : scene.warnings)
         if (contains(warning, "ignored")) summaries.push_back(warning);
-    REQUIRE(summaries == std::vector<std::string>{
-                             "ignored: 2 skins, 1 animation, 1 normal texture, 1 MASK material, "
-                             "KHR_texture_transform"});
+    REQUIRE(summaries ==
+            std::vector<std::string>{
+                "ignored: 2 skins, 1 animation, 1 normal texture, KHR_texture_transform"});
     // A file using only what is read has no summary.
     for (const auto& warning : load(triangle_gltf({})).warnings)
         REQUIRE(!contains(warning, "ignored"));
@@ -501,4 +505,107 @@ TEST_CASE("gltf loader: the first directional or spot light is the key light, th
                      "dropped lights: 0 'bulb' (point), 2 'sun' (directional, one key light "
                      "only)") == 1);
     for (const auto& warning : scene.warnings) CHECK(!contains(warning, "ignored"));
+}
+
+TEST_CASE("gltf loader: COLOR_0 is read as float or normalised integers, other forms refused",
+          "[runtime][gltf]") {
+    // A quad (4 vertices) whose COLOR_0 repeats one colour given as `values`.
+    auto quad_with = [](auto values, int component_type, const std::string& type, bool normalized,
+                        int count = 4) {
+        GltfBuilder b;
+        const int colours = b.accessor(values, component_type, type, count, normalized);
+        b.mesh_node(b.quad(0, 0, 0, 1, -1, 4, fmt::format(R"(,"COLOR_0":{})", colours)));
+        return b.json();
+    };
+    auto repeated = [](auto one) {
+        std::vector<typename decltype(one)::value_type> all;
+        for (int v = 0; v < 4; ++v) all.insert(all.end(), one.begin(), one.end());
+        return all;
+    };
+    const auto floats = repeated(std::vector<float>{0.25f, 0.5f, 1.0f});
+    const auto bytes = repeated(std::vector<std::uint8_t>{255, 0, 51, 102});
+    const auto shorts = repeated(std::vector<std::uint16_t>{65535, 0, 13107, 0});
+    auto colours = [](const deepgi::Scene& scene) {
+        std::vector<glm::vec4> list;
+        for (const auto& vertex : scene.vertices) list.push_back(vertex.colour);
+        return list;
+    };
+    using V = std::vector<glm::vec4>;
+    CHECK(colours(load(quad_with(floats, 5126, "VEC3", false))) ==
+          V(6, glm::vec4(0.25f, 0.5f, 1.0f, 1.0f)));
+    CHECK(colours(load(quad_with(bytes, 5121, "VEC4", true))) ==
+          V(6, glm::vec4(1.0f, 0.0f, 0.2f, 0.4f)));
+    CHECK(colours(load(quad_with(shorts, 5123, "VEC4", true))) ==
+          V(6, glm::vec4(1.0f, 0.0f, 0.2f, 0.0f)));
+    // Without COLOR_0 the colour is white.
+    GltfBuilder plain;
+    plain.mesh_node(plain.quad(0, 0, 0, 1, -1));
+    CHECK(colours(load(plain.json())) == V(6, glm::vec4(1.0f)));
+    // Integers not normalised, signed, or two components: refused naming the accessor.
+    const std::string message =
+        "COLOR_0 (accessor 0) must be VEC3 or VEC4 of float, or of normalized unsigned byte or "
+        "short";
+    CHECK(contains(refusal(quad_with(bytes, 5121, "VEC4", false)), message));
+    CHECK(contains(refusal(quad_with(bytes, 5120, "VEC4", true)), message));
+    CHECK(contains(refusal(quad_with(floats, 5126, "VEC2", false, 4)), message));
+    CHECK(contains(refusal(quad_with(floats, 5126, "VEC3", false, 3)),
+                   "COLOR_0 and POSITION counts differ"));
+    auto not_finite = floats;
+    not_finite[4] = std::numeric_limits<float>::quiet_NaN();
+    CHECK(contains(refusal(quad_with(not_finite, 5126, "VEC3", false)),
+                   "a COLOR_0 value is not finite"));
+    GltfBuilder dangling;
+    dangling.mesh_node(dangling.quad(0, 0, 0, 1, -1, 4, R"(,"COLOR_0":99)"));
+    CHECK(contains(refusal(dangling.json()), "accessor index out of range"));
+}
+
+TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read; bad values refused",
+          "[runtime][gltf]") {
+    auto with_material = [](const std::string& material, const std::string& sampler = "") {
+        GltfBuilder b;
+        const int s = sampler.empty() ? -1 : b.sampler(sampler);
+        const int texture = b.texture(encode_png(1, 1, {10, 20, 30, 40}), s);
+        const int m = b.material(
+            fmt::format(R"({{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":{}}}}},)"
+                        R"("emissiveTexture":{{"index":{}}}{}}})",
+                        texture, texture, material));
+        b.mesh_node(b.quad(0, 0, 0, 1, m));
+        return b.json();
+    };
+    const deepgi::Scene masked = load(with_material(R"(,"alphaMode":"MASK","alphaCutoff":0.3)"));
+    REQUIRE(masked.materials.size() == 1);
+    CHECK(masked.materials[0].alpha_cutoff == 0.3f);
+    CHECK(masked.materials[0].base_colour_texture == 0);
+    CHECK(masked.materials[0].emissive_texture == 0);  // one image, uploaded once
+    CHECK(masked.textures.size() == 1);
+    // MASK without a cutoff: the specification's 0.5. OPAQUE: no mask.
+    CHECK(load(with_material(R"(,"alphaMode":"MASK")")).materials[0].alpha_cutoff == 0.5f);
+    CHECK(load(with_material("")).materials[0].alpha_cutoff < 0.0f);
+    CHECK(contains(refusal(with_material(R"(,"alphaMode":"MASK","alphaCutoff":-1)")),
+                   "material 0: alphaCutoff must be a finite number >= 0"));
+    CHECK(contains(refusal(with_material(R"(,"alphaMode":"CUTOUT")")),
+                   "material 0: alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND"));
+
+    // No sampler: trilinear, repeat. A sampler: its values, for both textures.
+    const deepgi::TextureSampler defaults =
+        load(with_material("")).materials[0].base_colour_sampler;
+    CHECK(defaults == deepgi::TextureSampler{0x2601, 0x2703, 0x2901, 0x2901});
+    const deepgi::Scene sampled = load(
+        with_material("", R"({"magFilter":9728,"minFilter":9984,"wrapS":33071,"wrapT":33648})"));
+    const deepgi::TextureSampler expected{9728, 9984, 33071, 33648};
+    CHECK(sampled.materials[0].base_colour_sampler == expected);
+    CHECK(sampled.materials[0].emissive_sampler == expected);
+    CHECK(contains(refusal(with_material("", R"({"magFilter":9984})")),
+                   "sampler 0: magFilter 9984 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"minFilter":1})")),
+                   "sampler 0: minFilter 1 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"wrapS":9728})")),
+                   "sampler 0: wrapS 9728 is not a valid value"));
+    CHECK(contains(refusal(with_material("", R"({"wrapT":0})")),
+                   "sampler 0: wrapT 0 is not a valid value"));
+    // A texture naming a sampler that is not there.
+    std::string missing = with_material("");
+    const std::string source = R"({"source":0})";
+    missing.replace(missing.find(source), source.size(), R"({"source":0,"sampler":3})");
+    CHECK(contains(refusal(missing), "texture 0: sampler index out of range"));
 }

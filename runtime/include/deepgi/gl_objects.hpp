@@ -42,6 +42,7 @@ void destroy_vertex_array(GLuint name);
 void destroy_program(GLuint name);
 void destroy_shader(GLuint name);
 void destroy_query(GLuint name);
+void destroy_sampler(GLuint name);
 
 using Texture = Handle<&destroy_texture>;
 using Buffer = Handle<&destroy_buffer>;
@@ -50,12 +51,14 @@ using VertexArray = Handle<&destroy_vertex_array>;
 using Program = Handle<&destroy_program>;
 using Shader = Handle<&destroy_shader>;
 using Query = Handle<&destroy_query>;
+using Sampler = Handle<&destroy_sampler>;
 
 Texture create_texture(GLenum target);
 Buffer create_buffer();
 Framebuffer create_framebuffer();
 VertexArray create_vertex_array();
 Query create_query(GLenum target);
+Sampler create_sampler();
 
 // 2-D array texture with one mip level, nearest filtering, clamped edges.
 Texture create_texture_array(GLenum internal_format, int width, int height, int layers);

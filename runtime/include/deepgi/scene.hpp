@@ -1,6 +1,7 @@
 #pragma once
-// Scene data holds only what a pass reads: positions, normals and texture
-// coordinates; base colour (factor and texture) and emissive per material;
+// Scene data holds only what a pass reads: positions, normals, texture
+// coordinates and colours; base colour (factor, texture, alpha mask) and
+// emissive (factor and texture) per material;
 // one key light; a camera and a repeatable camera path.
 #include <glm/glm.hpp>
 
@@ -17,18 +18,34 @@ struct Vertex {
     glm::vec3 position;
     glm::vec3 normal;
     glm::vec2 uv;
+    glm::vec4 colour{1.0f};  // linear; multiplies the base colour (glTF COLOR_0)
+};
+
+// How a texture is read: GL filter and wrap enums, as glTF samplers name them.
+struct TextureSampler {
+    int mag_filter = 0x2601;  // GL_LINEAR
+    int min_filter = 0x2703;  // GL_LINEAR_MIPMAP_LINEAR
+    int wrap_s = 0x2901;      // GL_REPEAT
+    int wrap_t = 0x2901;
+    friend bool operator==(const TextureSampler&, const TextureSampler&) = default;
 };
 
 struct Material {
-    glm::vec4 base_colour{1.0f};   // linear
-    glm::vec3 emissive{0.0f};      // linear radiance
+    glm::vec4 base_colour{1.0f};   // linear; alpha only matters for a mask
+    glm::vec3 emissive{0.0f};      // linear radiance (times the emissive texture)
     int base_colour_texture = -1;  // index into Scene::textures, -1 for none
+    TextureSampler base_colour_sampler;
+    int emissive_texture = -1;  // index into Scene::textures, -1 for none
+    TextureSampler emissive_sampler;
+    // Alpha mask: fragments whose alpha (factor x texture x vertex colour) is
+    // below this are not surfaces, in both G-buffer layers. Negative: opaque.
+    float alpha_cutoff = -1.0f;
 };
 
 struct TextureImage {
     int width = 0;
     int height = 0;
-    std::vector<std::uint8_t> rgba8;  // sRGB-encoded, rows top to bottom
+    std::vector<std::uint8_t> rgba8;  // sRGB-encoded colour, linear alpha, rows top to bottom
 };
 
 // A contiguous index range drawn with one material.

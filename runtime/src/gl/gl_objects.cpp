@@ -27,6 +27,9 @@ void destroy_shader(GLuint name) {
 void destroy_query(GLuint name) {
     glDeleteQueries(1, &name);
 }
+void destroy_sampler(GLuint name) {
+    glDeleteSamplers(1, &name);
+}
 
 Texture create_texture(GLenum target) {
     GLuint name = 0;
@@ -50,6 +53,12 @@ VertexArray create_vertex_array() {
     GLuint name = 0;
     glCreateVertexArrays(1, &name);
     return VertexArray(name);
+}
+
+Sampler create_sampler() {
+    GLuint name = 0;
+    glCreateSamplers(1, &name);
+    return Sampler(name);
 }
 
 Query create_query(GLenum target) {

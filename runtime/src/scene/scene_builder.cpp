@@ -5,7 +5,10 @@
 namespace deepgi {
 
 int SceneBuilder::add_material(glm::vec3 base_colour, glm::vec3 emissive) {
-    materials_.push_back(Material{glm::vec4(base_colour, 1.0f), emissive, -1});
+    Material material;
+    material.base_colour = glm::vec4(base_colour, 1.0f);
+    material.emissive = emissive;
+    materials_.push_back(material);
     return static_cast<int>(materials_.size()) - 1;
 }
 

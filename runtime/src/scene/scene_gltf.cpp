@@ -1,6 +1,7 @@
-// glTF 2.0 through tinygltf. Reads positions, normals, TEXCOORD_0 (only to look
-// up the base colour texture), base colour factor and texture, and emissive
-// factor; everything else in the file is ignored.
+// glTF 2.0 through tinygltf. Reads positions, normals, TEXCOORD_0 (to look up
+// the textures), COLOR_0, base colour factor and texture with its sampler,
+// alpha mode and cutoff, emissive factor, texture and strength, cameras and
+// KHR_lights_punctual; everything else is named in one summary warning.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
 
@@ -18,6 +19,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 
@@ -220,8 +222,7 @@ TextureImage convert_image(const tinygltf::Image& image, const GltfReader& reade
     if (image.bits != 8 || image.width <= 0 || image.height <= 0 || image.component < 1 ||
         image.component > 4) {
         reader.fail(fmt::format(
-            "image '{}' is not an 8-bit image (only 8-bit base colour textures are supported)",
-            image.uri));
+            "image '{}' is not an 8-bit image (only 8-bit textures are supported)", image.uri));
     }
     TextureImage texture;
     texture.width = image.width;
@@ -235,6 +236,7 @@ TextureImage convert_image(const tinygltf::Image& image, const GltfReader& reade
     for (std::size_t i = 0; i < pixels; ++i) {
         const std::uint8_t* source = image.image.data() + i * std::size_t(image.component);
         std::uint8_t* target = texture.rgba8.data() + i * 4;
+        // Grey, grey + alpha, RGB or RGBA; alpha feeds the alpha mask.
         if (image.component <= 2) {
             target[0] = target[1] = target[2] = source[0];
         } else {
@@ -242,9 +244,38 @@ TextureImage convert_image(const tinygltf::Image& image, const GltfReader& reade
             target[1] = source[1];
             target[2] = source[2];
         }
-        target[3] = 255;
+        target[3] = image.component == 2 ? source[1] : image.component == 4 ? source[3] : 255;
     }
     return texture;
+}
+
+// A glTF sampler as GL enums; an absent filter (-1) gets the renderer's
+// default (trilinear minification, linear magnification).
+TextureSampler read_sampler(const tinygltf::Sampler& source, int index, const GltfReader& reader) {
+    TextureSampler sampler;
+    auto check = [&](int value, std::initializer_list<int> allowed, const char* field) {
+        if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+            reader.fail(fmt::format("sampler {}: {} {} is not a valid value", index, field, value));
+        return value;
+    };
+    if (source.magFilter != -1)
+        sampler.mag_filter =
+            check(source.magFilter,
+                  {TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_FILTER_LINEAR}, "magFilter");
+    if (source.minFilter != -1)
+        sampler.min_filter = check(source.minFilter,
+                                   {TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_FILTER_LINEAR,
+                                    TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST,
+                                    TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST,
+                                    TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR,
+                                    TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR},
+                                   "minFilter");
+    const std::initializer_list<int> wraps = {TINYGLTF_TEXTURE_WRAP_REPEAT,
+                                              TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE,
+                                              TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT};
+    sampler.wrap_s = check(source.wrapS, wraps, "wrapS");
+    sampler.wrap_t = check(source.wrapT, wraps, "wrapT");
+    return sampler;
 }
 
 // Deepest nesting of JSON arrays and objects in `text`, stopping early once
@@ -391,39 +422,37 @@ std::string counted(std::uint64_t n, std::string_view noun) {
 // One line naming everything in the file that the renderer does not use, so
 // nothing is dropped silently: "ignored: 2 skins, 1 animation, KHR_texture_transform".
 std::string ignored_summary(const tinygltf::Model& model, std::uint64_t orthographic_cameras) {
-    std::uint64_t morph_targets = 0, vertex_colours = 0, tangents = 0, extra_uv_sets = 0;
+    std::uint64_t morph_targets = 0, extra_colour_sets = 0, tangents = 0, extra_uv_sets = 0;
     for (const auto& mesh : model.meshes) {
         for (const auto& primitive : mesh.primitives) {
             morph_targets += primitive.targets.size();
             for (const auto& [name, accessor] : primitive.attributes) {
-                if (name.rfind("COLOR_", 0) == 0) ++vertex_colours;
+                if (name.rfind("COLOR_", 0) == 0 && name != "COLOR_0") ++extra_colour_sets;
                 if (name == "TANGENT") ++tangents;
                 if (name.rfind("TEXCOORD_", 0) == 0 && name != "TEXCOORD_0") ++extra_uv_sets;
             }
         }
     }
-    std::uint64_t normal_maps = 0, occlusion_maps = 0, metal_rough_maps = 0, emissive_maps = 0,
-                  masked = 0;
+    // Normal textures are skipped, not half-used: shading normals from a
+    // normal map need tangents (given or MikkTSpace-generated), which the
+    // G-buffer does not carry.
+    std::uint64_t normal_maps = 0, occlusion_maps = 0, metal_rough_maps = 0;
     for (const auto& material : model.materials) {
         normal_maps += material.normalTexture.index >= 0;
         occlusion_maps += material.occlusionTexture.index >= 0;
         metal_rough_maps += material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
-        emissive_maps += material.emissiveTexture.index >= 0;
-        masked += material.alphaMode == "MASK";
     }
     std::vector<std::string> parts = {
         counted(model.skins.size(), "skin"),
         counted(model.animations.size(), "animation"),
         counted(morph_targets, "morph target"),
         counted(orthographic_cameras, "orthographic camera"),
-        counted(vertex_colours, "vertex colour set"),
+        counted(extra_colour_sets, "extra vertex colour set"),
         counted(tangents, "tangent set"),
         counted(extra_uv_sets, "extra texture coordinate set"),
         counted(normal_maps, "normal texture"),
         counted(occlusion_maps, "occlusion texture"),
         counted(metal_rough_maps, "metallic-roughness texture"),
-        counted(emissive_maps, "emissive texture"),
-        counted(masked, "MASK material"),
     };
     for (const auto& extension : model.extensionsUsed)
         if (extension != "KHR_materials_emissive_strength" && extension != "KHR_lights_punctual")
@@ -538,6 +567,31 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             read_uv = reader.accessor_reader(it->second, 2, count);
             if (count != vertex_count) reader.fail("TEXCOORD_0 and POSITION counts differ");
         }
+        // COLOR_0: RGB or RGBA, float or normalised unsigned byte or short
+        // (the only forms the specification allows), linear.
+        std::function<float(std::size_t, int)> read_colour;
+        int colour_components = 0;
+        if (auto it = primitive.attributes.find("COLOR_0"); it != primitive.attributes.end()) {
+            if (it->second < 0 || it->second >= int(model.accessors.size()))
+                reader.fail("accessor index out of range");
+            const auto& accessor = model.accessors[std::size_t(it->second)];
+            colour_components = accessor.type == TINYGLTF_TYPE_VEC3   ? 3
+                                : accessor.type == TINYGLTF_TYPE_VEC4 ? 4
+                                                                      : 0;
+            const bool float_colour = accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+            const bool normalised_colour =
+                accessor.normalized &&
+                (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                 accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+            if (colour_components == 0 || !(float_colour || normalised_colour))
+                reader.fail(fmt::format(
+                    "COLOR_0 (accessor {}) must be VEC3 or VEC4 of float, or of normalized "
+                    "unsigned byte or short",
+                    it->second));
+            std::size_t count = 0;
+            read_colour = reader.accessor_reader(it->second, colour_components, count);
+            if (count != vertex_count) reader.fail("COLOR_0 and POSITION counts differ");
+        }
         std::vector<std::uint32_t> local_indices;
         if (primitive.indices >= 0) {
             local_indices = reader.read_indices(primitive.indices);
@@ -583,6 +637,13 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             if (!std::isfinite(vertex.normal.x)) vertex.normal = flat_normal;
             if (back) vertex.normal = -vertex.normal;
             vertex.uv = read_uv ? glm::vec2(read_uv(i, 0), read_uv(i, 1)) : glm::vec2(0.0f);
+            if (read_colour) {
+                vertex.colour = glm::vec4(read_colour(i, 0), read_colour(i, 1), read_colour(i, 2),
+                                          colour_components == 4 ? read_colour(i, 3) : 1.0f);
+                if (!std::isfinite(vertex.colour.r + vertex.colour.g + vertex.colour.b +
+                                   vertex.colour.a))
+                    reader.fail("a COLOR_0 value is not finite");
+            }
             if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
                 !std::isfinite(vertex.position.z)) {
                 reader.fail("a vertex position is not finite");
@@ -759,6 +820,26 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             fmt::format("skipped {} point or line primitive(s): they are not surfaces",
                         skipped_points_and_lines));
 
+    // A glTF texture is an image plus a sampler; images are uploaded once,
+    // samplers travel with the material that uses them.
+    auto use_texture = [&](int texture_index, TextureSampler& sampler) {
+        if (texture_index >= int(model.textures.size())) reader.fail("texture index out of range");
+        const auto& texture = model.textures[std::size_t(texture_index)];
+        const int image_index = texture.source;
+        if (image_index < 0 || image_index >= int(model.images.size()))
+            reader.fail("texture has no valid image");
+        if (texture.sampler >= 0) {
+            if (texture.sampler >= int(model.samplers.size()))
+                reader.fail(fmt::format("texture {}: sampler index out of range", texture_index));
+            sampler =
+                read_sampler(model.samplers[std::size_t(texture.sampler)], texture.sampler, reader);
+        }
+        auto [it, inserted] = texture_of_image.try_emplace(image_index, int(scene.textures.size()));
+        if (inserted)
+            scene.textures.push_back(convert_image(model.images[std::size_t(image_index)], reader));
+        return it->second;
+    };
+
     std::uint64_t blended_materials = 0;
     for (auto& [material_index, indices] : indices_by_material) {
         Material material;
@@ -784,21 +865,21 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                                     material_index));
                 material.emissive *= float(strength);
             }
-            if (source.alphaMode == "BLEND") ++blended_materials;
-            const int texture_index = source.pbrMetallicRoughness.baseColorTexture.index;
-            if (texture_index >= 0) {
-                if (texture_index >= int(model.textures.size()))
-                    reader.fail("texture index out of range");
-                const int image_index = model.textures[std::size_t(texture_index)].source;
-                if (image_index < 0 || image_index >= int(model.images.size()))
-                    reader.fail("texture has no valid image");
-                auto [it, inserted] =
-                    texture_of_image.try_emplace(image_index, int(scene.textures.size()));
-                if (inserted)
-                    scene.textures.push_back(
-                        convert_image(model.images[std::size_t(image_index)], reader));
-                material.base_colour_texture = it->second;
+            if (source.alphaMode == "BLEND") {
+                ++blended_materials;
+            } else if (source.alphaMode == "MASK") {
+                if (!(source.alphaCutoff >= 0.0) || !std::isfinite(source.alphaCutoff))
+                    reader.fail(fmt::format("material {}: alphaCutoff must be a finite number >= 0",
+                                            material_index));
+                material.alpha_cutoff = float(source.alphaCutoff);
+            } else if (source.alphaMode != "OPAQUE") {
+                reader.fail(fmt::format("material {}: alphaMode '{}' is not OPAQUE, MASK or BLEND",
+                                        material_index, source.alphaMode));
             }
+            if (const int index = source.pbrMetallicRoughness.baseColorTexture.index; index >= 0)
+                material.base_colour_texture = use_texture(index, material.base_colour_sampler);
+            if (const int index = source.emissiveTexture.index; index >= 0)
+                material.emissive_texture = use_texture(index, material.emissive_sampler);
         }
         scene.materials.push_back(material);
         DrawBatch batch;

@@ -25,7 +25,8 @@ SceneGpu upload_scene(const Scene& scene) {
         GLuint offset;
     } attributes[] = {{DEEPGI_ATTRIBUTE_POSITION, 3, offsetof(Vertex, position)},
                       {DEEPGI_ATTRIBUTE_NORMAL, 3, offsetof(Vertex, normal)},
-                      {DEEPGI_ATTRIBUTE_UV, 2, offsetof(Vertex, uv)}};
+                      {DEEPGI_ATTRIBUTE_UV, 2, offsetof(Vertex, uv)},
+                      {DEEPGI_ATTRIBUTE_COLOUR, 4, offsetof(Vertex, colour)}};
     for (const auto& attribute : attributes) {
         glEnableVertexArrayAttrib(vao, attribute.location);
         glVertexArrayAttribFormat(vao, attribute.location, attribute.size, GL_FLOAT, GL_FALSE,
@@ -44,9 +45,21 @@ SceneGpu upload_scene(const Scene& scene) {
         glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA,
                             GL_UNSIGNED_BYTE, image.rgba8.data());
         glGenerateTextureMipmap(texture.get());
-        glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         gpu.textures.push_back(std::move(texture));
+    }
+    // Filters and wraps live in sampler objects: one image may be read
+    // through different glTF samplers by different materials.
+    auto make_sampler = [](const TextureSampler& source) {
+        gl::Sampler sampler = gl::create_sampler();
+        glSamplerParameteri(sampler.get(), GL_TEXTURE_MAG_FILTER, source.mag_filter);
+        glSamplerParameteri(sampler.get(), GL_TEXTURE_MIN_FILTER, source.min_filter);
+        glSamplerParameteri(sampler.get(), GL_TEXTURE_WRAP_S, source.wrap_s);
+        glSamplerParameteri(sampler.get(), GL_TEXTURE_WRAP_T, source.wrap_t);
+        return sampler;
+    };
+    for (const auto& material : scene.materials) {
+        gpu.base_colour_samplers.push_back(make_sampler(material.base_colour_sampler));
+        gpu.emissive_samplers.push_back(make_sampler(material.emissive_sampler));
     }
     return gpu;
 }
@@ -55,7 +68,8 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
     glBindVertexArray(scene.vertex_array.get());
     for (const auto& batch : scene.batches) {
         if (program_for_materials != 0) {
-            const Material& material = scene.materials[std::size_t(batch.material)];
+            const std::size_t m = std::size_t(batch.material);
+            const Material& material = scene.materials[m];
             glProgramUniform4fv(program_for_materials, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
                                 &material.base_colour.x);
             glProgramUniform3fv(program_for_materials, DEEPGI_UNIFORM_EMISSIVE_FACTOR, 1,
@@ -63,13 +77,30 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
             const bool textured = material.base_colour_texture >= 0;
             glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE,
                                textured ? 1 : 0);
-            if (textured)
+            if (textured) {
                 glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
                                   scene.textures[std::size_t(material.base_colour_texture)].get());
+                glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
+            }
+            const bool emissive_textured = material.emissive_texture >= 0;
+            glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE,
+                               emissive_textured ? 1 : 0);
+            if (emissive_textured) {
+                glBindTextureUnit(DEEPGI_UNIT_EMISSIVE,
+                                  scene.textures[std::size_t(material.emissive_texture)].get());
+                glBindSampler(DEEPGI_UNIT_EMISSIVE, scene.emissive_samplers[m].get());
+            }
+            glProgramUniform1f(program_for_materials, DEEPGI_UNIFORM_ALPHA_CUTOFF,
+                               material.alpha_cutoff);
         }
         glDrawElements(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
                        reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) *
                                                      sizeof(std::uint32_t)));
+    }
+    // Other passes read their textures with the textures' own parameters.
+    if (program_for_materials != 0) {
+        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
+        glBindSampler(DEEPGI_UNIT_EMISSIVE, 0);
     }
 }
 

@@ -12,6 +12,9 @@ struct SceneGpu {
     std::vector<DrawBatch> batches;
     std::vector<Material> materials;
     std::vector<gl::Texture> textures;
+    // Per material, how its base colour and emissive textures are read.
+    std::vector<gl::Sampler> base_colour_samplers;
+    std::vector<gl::Sampler> emissive_samplers;
 };
 
 SceneGpu upload_scene(const Scene& scene);
