@@ -12,10 +12,13 @@ namespace spiral::detail {
 // and, when asked, the tap count of the band that first exceeded the bound
 // (0 if none did). known_lower_bound, a proved lower bound on K, lets the
 // value-only sweep skip bands that cannot exceed it (ignored when a sector is
-// asked for). The arguments must already be valid (require_valid).
+// asked for). The value-only sweep runs eight bands per pass in 32-bit lanes
+// when 4 n^2 m <= 2^28, else one band at a time; allow_lanes = false forces
+// the latter (so tests can compare the two). The arguments must already be
+// valid (require_valid).
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t bound,
                       Sector* worst_sector, std::int64_t* exceeding_band = nullptr,
-                      std::int64_t known_lower_bound = 0);
+                      std::int64_t known_lower_bound = 0, bool allow_lanes = true);
 
 struct BandScratch {
     std::vector<std::int64_t> sorted, angles;

@@ -384,9 +384,9 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int
 
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t bound,
                       Sector* worst_sector, std::int64_t* exceeding_band,
-                      std::int64_t known_lower_bound) {
+                      std::int64_t known_lower_bound, bool allow_lanes) {
     const SpiralLattice lattice(n, tau, m_den);
-    if (!worst_sector && 4 * lattice.n * lattice.n * m_den <= kLaneLimit)
+    if (allow_lanes && !worst_sector && 4 * lattice.n * lattice.n * m_den <= kLaneLimit)
         return evaluate_in_lanes(lattice, bound, exceeding_band, known_lower_bound);
     const std::int64_t circle = lattice.circle;
     const std::int64_t count_unit = 2 * circle;  // 4nm
