@@ -22,7 +22,7 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t boun
 
 struct BandScratch {
     std::vector<std::int64_t> sorted, angles;
-    std::vector<std::int32_t> taps_at, bucket;
+    std::vector<std::int32_t> taps_at, bucket, lane_angle, lane_tap;
 };
 
 // The worst excess over the closed and open sectors of the single band that
@@ -31,5 +31,13 @@ struct BandScratch {
 // probed in any order.
 std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m, std::int64_t taps,
                            BandScratch& scratch);
+
+// Up to eight bands of one candidate at once: excess[j] = evaluate_band(n,
+// tau, m, taps[j]) for j < count (1 <= count <= 8), in one pass over the
+// taps of the largest band sorted by angle, each band in its own 32-bit
+// vector lane (fast.cpp proves the lane values exact). When 4 n^2 m > 2^28
+// the bands are evaluated one by one.
+void evaluate_bands(int n, std::int64_t tau, std::int64_t m, const std::int64_t* taps, int count,
+                    BandScratch& scratch, std::int64_t* excess);
 
 }  // namespace spiral::detail

@@ -288,6 +288,21 @@ void scan_lanes(const std::int32_t* angle, const std::int32_t* tap, std::size_t 
     std::memcpy(bands.o_open, &o_open, sizeof o_open);
 }
 
+// Lane j's worst excess from scan_lanes' arcs: the four kinds of sector, as in
+// band_excess. `size` is how many elements the scan visited.
+std::int64_t lane_excess(const LaneBands& bands, std::size_t j, std::size_t size,
+                         std::int64_t circle) {
+    const std::int64_t m = bands.taps[j], count_unit = 2 * circle;
+    const std::int64_t closed_width = bands.closed_width[j], open_width = bands.open_width[j];
+    std::int64_t worst = bands.c_closed[j];
+    worst = std::max(worst, open_width * circle - count_unit * m + bands.o_closed[j]);
+    if (size > 1) {
+        worst = std::max(worst, count_unit * m - closed_width * circle - bands.c_open[j]);
+        worst = std::max(worst, -std::int64_t{bands.o_open[j]});
+    }
+    return worst;
+}
+
 // The value-only sweep of evaluate(), eight bands per pass. Same contract.
 std::int64_t evaluate_in_lanes(const SpiralLattice& lattice, std::int64_t bound,
                                std::int64_t* exceeding_band, std::int64_t known_lower_bound) {
@@ -317,16 +332,8 @@ std::int64_t evaluate_in_lanes(const SpiralLattice& lattice, std::int64_t bound,
         scan_lanes(angle.data(), tap.data(), angle.size(), static_cast<std::int32_t>(count_unit),
                    bands);
         for (std::int64_t m = first; m <= last; ++m) {
-            const auto j = static_cast<std::size_t>(m - first);
-            const std::int64_t closed_width = bands.closed_width[j];
-            const std::int64_t open_width = bands.open_width[j];
-            // The four kinds of sector, as in band_excess.
-            std::int64_t worst = bands.c_closed[j];
-            worst = std::max(worst, open_width * circle - count_unit * m + bands.o_closed[j]);
-            if (angle.size() > 1) {
-                worst = std::max(worst, count_unit * m - closed_width * circle - bands.c_open[j]);
-                worst = std::max(worst, -std::int64_t{bands.o_open[j]});
-            }
+            const std::int64_t worst =
+                lane_excess(bands, static_cast<std::size_t>(m - first), angle.size(), circle);
             if (worst > best) {
                 best = worst;
                 best_m = m;
@@ -380,6 +387,66 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m_den, std::int
     }
     return band_excess(scratch.angles, scratch.taps_at, taps, band_open_width(lattice.n, taps),
                        2 * lattice.circle, lattice.circle);
+}
+
+void evaluate_bands(int n, std::int64_t tau, std::int64_t m_den, const std::int64_t* taps,
+                    int count, BandScratch& scratch, std::int64_t* excess) {
+    const SpiralLattice lattice(n, tau, m_den);
+    if (4 * lattice.n * lattice.n * m_den > kLaneLimit || count > kLanes) {
+        for (int j = 0; j < count; ++j) excess[j] = evaluate_band(n, tau, m_den, taps[j], scratch);
+        return;
+    }
+    const std::int64_t largest = *std::max_element(taps, taps + count);
+    // Taps 0 .. largest-1 sorted by angle, each with its index: a counting
+    // sort over the nm angle slots (every angle has the parity of p) when
+    // there are few slots, else a sort of (angle, index) keys.
+    std::vector<std::int32_t>& angle = scratch.lane_angle;
+    std::vector<std::int32_t>& tap = scratch.lane_tap;
+    angle.resize(static_cast<std::size_t>(largest));
+    tap.resize(static_cast<std::size_t>(largest));
+    const std::int64_t slots = lattice.circle / 2, step = 2 * lattice.tau % lattice.circle;
+    if (slots <= 16 * lattice.n) {
+        std::vector<std::int32_t>& start = scratch.bucket;
+        start.assign(static_cast<std::size_t>(slots) + 1, 0);
+        for (std::int64_t i = 0, y = lattice.angular(0); i < largest; ++i) {
+            start[static_cast<std::size_t>(y / 2) + 1] += 1;
+            y += step;
+            if (y >= lattice.circle) y -= lattice.circle;
+        }
+        for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+        for (std::int64_t i = 0, y = lattice.angular(0); i < largest; ++i) {
+            const auto at = static_cast<std::size_t>(start[static_cast<std::size_t>(y / 2)]++);
+            angle[at] = static_cast<std::int32_t>(y);
+            tap[at] = static_cast<std::int32_t>(i);
+            y += step;
+            if (y >= lattice.circle) y -= lattice.circle;
+        }
+    } else {
+        std::vector<std::int64_t>& keys = scratch.sorted;
+        keys.clear();
+        for (std::int64_t i = 0, y = lattice.angular(0); i < largest; ++i) {
+            keys.push_back(y << 32 | i);
+            y += step;
+            if (y >= lattice.circle) y -= lattice.circle;
+        }
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t k = 0; k < keys.size(); ++k) {
+            angle[k] = static_cast<std::int32_t>(keys[k] >> 32);
+            tap[k] = static_cast<std::int32_t>(keys[k] & 0xffffffff);
+        }
+    }
+    LaneBands bands;
+    for (int j = 0; j < kLanes; ++j) {
+        // Lanes past `count` repeat the last band; their results are ignored.
+        const std::int64_t m = taps[std::min(j, count - 1)];
+        bands.taps[j] = static_cast<std::int32_t>(m);
+        bands.closed_width[j] = static_cast<std::int32_t>(2 * (m - 1));
+        bands.open_width[j] = static_cast<std::int32_t>(band_open_width(lattice.n, m));
+    }
+    scan_lanes(angle.data(), tap.data(), angle.size(),
+               static_cast<std::int32_t>(2 * lattice.circle), bands);
+    for (int j = 0; j < count; ++j)
+        excess[j] = lane_excess(bands, static_cast<std::size_t>(j), angle.size(), lattice.circle);
 }
 
 std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t bound,
