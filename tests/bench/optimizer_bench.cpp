@@ -5,14 +5,21 @@
 // --jobs 2` on the 2-core build machine.
 //
 //   optimizer_bench [--quick] [--full]   (--full adds the table 1..4096 once)
+//   optimizer_bench --targets [--reps R] [--reps-4096 S]
+//       the three speed targets only: tables 1..1024 and 1..256 with m = 8,
+//       R times each (default 5), and 1..4096, S times (default 1; 0 skips
+//       it), with medians and peak memory
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <functional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -60,14 +67,51 @@ long peak_rss_kib() {
     return usage.ru_maxrss;
 }
 
+// The three speed targets, as `spiralgen table ... --jobs 2` runs them. Peak
+// resident memory is that of this process so far (it only grows), so the
+// last row's figure covers all three.
+int run_targets(int repetitions, int big_repetitions) {
+    struct Target {
+        int max_n;
+        std::int64_t m;
+        double limit_s;
+    };
+    fmt::print(
+        "| command | runs | median wall (s) | median CPU (s) | target wall (s) | peak RSS so far "
+        "(MiB) |\n|:--|--:|--:|--:|--:|--:|\n");
+    for (const Target t : {Target{1024, 1, 3}, Target{256, 8, 60}, Target{4096, 1, 120}}) {
+        const int runs = t.max_n == 4096 ? big_repetitions : repetitions;
+        if (runs == 0) continue;
+        const Sample s = median(
+            [&] {
+                spiral::search_range(1, t.max_n, spiral::SearchOptions{2, t.m});
+            },
+            runs);
+        const std::string command =
+            fmt::format("table --max-n {}{} --jobs 2", t.max_n,
+                        t.m > 1 ? fmt::format(" --denominator {}", t.m) : std::string());
+        fmt::print("| `{}` | {} | {:.2f} | {:.2f} | {:.0f} | {:.1f} |\n", command, runs, s.wall,
+                   s.cpu, t.limit_s, double(peak_rss_kib()) / 1024.0);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, full = false;
+    bool quick = false, full = false, targets = false;
+    int repetitions = 5, big_repetitions = 1;
     for (int a = 1; a < argc; ++a) {
         quick = quick || std::strcmp(argv[a], "--quick") == 0;
         full = full || std::strcmp(argv[a], "--full") == 0;
+        targets = targets || std::strcmp(argv[a], "--targets") == 0;
+        if (std::strcmp(argv[a], "--reps") == 0 && a + 1 < argc)
+            repetitions = std::max(1, std::atoi(argv[++a]));
+        if (std::strcmp(argv[a], "--reps-4096") == 0 && a + 1 < argc)
+            big_repetitions = std::max(0, std::atoi(argv[++a]));
     }
+    if (targets) return run_targets(repetitions, big_repetitions);
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     fmt::print("hardware threads: {}\n\n", threads);
 
