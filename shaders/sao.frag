@@ -113,8 +113,9 @@ void main() {
   mat2 rotation = pixel_rotation(uvec2(pixel));
   ivec2 size = ivec2(frame.internal_size.xy);
 
-  // The bias grows with the pixel footprint at X (metres per pixel at this
-  // depth): positions rebuilt from one depth per pixel are only that exact.
+  // Solid-angle threshold: the G-buffer samples a surface once per pixel, so
+  // a point less than half a pixel footprint at X (metres per pixel at this
+  // depth) above the tangent plane cannot be told from X's own surface.
   float footprint_bias = bias + 0.5 * (2.0 * frame.camera_ray_scale.y * depth / frame.internal_size.y);
   float sum = 0.0;
   for (int i = 0; i < AO_NUM_TAPS; ++i) {
