@@ -36,27 +36,43 @@ const float pi = 3.14159265;
 // One tap's term of the solid-angle estimator. The reference defines
 //   O(X) = 1/pi * int_hemisphere f(d) cos(theta) dw,  f(d) = 1 - d^2 / r^2,
 // and over the surfaces the G-buffer sees, dw = cos(theta_Y) dA / |v|^2. A
-// surface patch behind one pixel has dA = (s z_Y)^2 / cos(alpha_Y), s the
-// pixel size per metre of depth and alpha_Y the angle between its normal and
-// the view ray. Tap i sits at radius alpha_i R (R = r / (s z_X) pixels),
-// uniform in radius, so it stands for 2 alpha_i pi R^2 / N pixels of area:
-//   O ~= 2 r^2 / N * sum_i alpha_i (z_Y / z_X)^2 f cos(theta_X) cos(theta_Y)
-//                                  / (|v|^2 cos(alpha_Y)).
+// pixel of side s at unit depth, phi off the optical axis, spans the solid
+// angle s^2 cos(phi)^3 from the eye; at linear depth z_Y its surface lies
+// z_Y / cos(phi) away, so the patch behind it has the area
+//   dA = s^2 cos(phi)^3 (z_Y / cos(phi))^2 / cos(alpha_Y)
+//      = (s z_Y)^2 cos(phi) / cos(alpha_Y),
+// alpha_Y the angle between its normal and the view ray. Tap i sits at
+// radius alpha_i R (R = r / (s z_X) pixels), uniform in radius, so it stands
+// for 2 alpha_i pi R^2 / N pixels of area:
+//   O ~= 2 r^2 / N * sum_i alpha_i (z_Y / z_X)^2 cos(phi) f cos(theta_X)
+//                              cos(theta_Y) / (|v|^2 cos(alpha_Y)).
 // cos(theta_Y) is taken as |v.n_Y| / |v|: a seen surface facing away from X
 // (the top of a slab above X) stands in for the unseen face of the same thin
-// occluder that does face X. Against the reference this lowers MAE on every
-// measured scene (docs/deep-sao.md). Returns the summand without 2 r^2 / N.
+// occluder that does face X.
+// The bias is a threshold, not a subtraction: a point less than `bias` above
+// the tangent plane is taken for X's own surface and ignored, and every other
+// point keeps its full cos(theta_X) = v.n / |v|, as in the integral.
+// Subtracting the bias shrank the cosine of every real occluder by bias / |v|,
+// most where the weight 1 / |v|^2 is largest (next to a crease), and made the
+// estimate too bright. A coplanar point needs no margin of its own: its
+// cos(theta_X) and cos(theta_Y) are both of the order of the reconstruction
+// error, so its term is of the second order. Returns the summand without
+// 2 r^2 / N.
 float solid_angle_term(vec3 v, vec3 normal, vec3 tap_position, vec3 tap_normal, float radius_squared,
                        float bias, float depth_ratio_squared, float alpha) {
   float vv = dot(v, v);
   if (vv >= radius_squared || vv <= 0.0) return 0.0;
+  float vn = dot(v, normal);
+  if (vn <= bias) return 0.0;
   float length_v = sqrt(vv);
-  float cos_x = (dot(v, normal) - bias) / length_v;
+  float cos_x = vn / length_v;
   float cos_y = abs(dot(v, tap_normal)) / length_v;
-  if (cos_x <= 0.0 || cos_y <= 0.0) return 0.0;
+  if (cos_y <= 0.0) return 0.0;
+  vec3 view_ray = normalize(tap_position);
+  float cos_phi = -view_ray.z;
   // A patch seen edge-on stands for unbounded area: clamp its weight.
-  float cos_view = max(dot(tap_normal, -normalize(tap_position)), 0.1);
-  return alpha * depth_ratio_squared * (1.0 - vv / radius_squared) * cos_x * cos_y / (vv * cos_view);
+  float cos_view = max(dot(tap_normal, -view_ray), 0.1);
+  return alpha * depth_ratio_squared * cos_phi * (1.0 - vv / radius_squared) * cos_x * cos_y / (vv * cos_view);
 }
 
 // AO(X, Y) of design.md 3, step 4. Negative beyond the radius: the caller
@@ -99,8 +115,9 @@ void main() {
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
   ivec2 size = ivec2(frame.internal_size.xy);
 
-  // The bias grows with the pixel footprint at X (metres per pixel at this
-  // depth): positions rebuilt from one depth per pixel are only that exact.
+  // Solid-angle threshold: the G-buffer samples a surface once per pixel, so
+  // a point less than half a pixel footprint at X (metres per pixel at this
+  // depth) above the tangent plane cannot be told from X's own surface.
   float footprint_bias = bias + 0.5 * (2.0 * frame.camera_ray_scale.y * depth / frame.internal_size.y);
   float sum = 0.0;
   for (int i = 0; i < AO_NUM_TAPS; ++i) {

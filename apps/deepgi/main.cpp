@@ -42,6 +42,7 @@ struct Options {
     float guard_band = 0.1f;
     std::string view = "final";
     std::string dump;
+    bool ao_bias_given = false;
     std::string timing = "auto";
     bool camera_path = false;
     std::string camera;  // a file camera's name or index; empty for the scene's default
@@ -99,6 +100,13 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.ao = options.ao;
     settings.radiosity = options.radiosity;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
+    // Unless --ao-bias is given, the solid-angle method runs without a bias:
+    // a coplanar point's term is of the second order in its reconstruction
+    // error (sao.frag), and every centimetre of threshold drops real
+    // occluders next to creases. The published method subtracts its bias
+    // and keeps the AoSettings default it was tuned with.
+    if (!options.ao_bias_given && settings.ao.method == deepgi::AoMethod::solid_angle)
+        settings.ao.bias = 0.0f;
     settings.gl_debug = options.gl_debug;
     settings.shadow_map_size = options.shadow_map_size;
     deepgi::validate(settings);
@@ -236,7 +244,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
         ->capture_default_str();
-    app.add_option("--ao-bias", options.ao.bias, "Deep SAO: bias beta (m)")->capture_default_str();
+    auto* ao_bias = app.add_option(
+        "--ao-bias", options.ao.bias,
+        fmt::format("Deep SAO: occluders closer than this to the tangent plane are ignored (m); "
+                    "default 0, {} with --ao-method published",
+                    deepgi::AoSettings{}.bias));
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
         ->capture_default_str();
     app.add_option("--ao-q", options.ao.q,
@@ -276,6 +288,7 @@ int main(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
+        options.ao_bias_given = ao_bias->count() > 0;
     } catch (const CLI::CallForHelp&) {
         fmt::print("{}", app.help());
         return 0;

@@ -4,3 +4,12 @@ target_link_libraries(deepgi_reference_tests PRIVATE deepgi::reference spiral_ca
 target_compile_definitions(deepgi_reference_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_reference_tests deepgi)
 catch_discover_tests(deepgi_reference_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# Deep SAO against the reference: the accuracy targets (docs/deep-sao.md).
+# Needs a GL context (headless EGL) and Embree; one ctest entry per scene
+# would repeat the context set-up, so the seven scenes run in one process.
+add_executable(deepgi_ao_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/ao_accuracy_test.cpp)
+target_link_libraries(deepgi_ao_accuracy_tests PRIVATE deepgi::reference spiral_catch_main)
+target_include_directories(deepgi_ao_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
+set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 600)

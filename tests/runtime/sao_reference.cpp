@@ -123,14 +123,19 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                         const glm::vec3 v = y - position;
                         const float vv = glm::dot(v, v);
                         if (vv >= radius_squared || vv <= 0.0f) continue;
+                        // The bias is a threshold: points less than beta
+                        // above the tangent plane are X's own surface.
+                        const float vn = glm::dot(v, normal);
+                        if (vn <= beta) continue;
                         const float length_v = std::sqrt(vv);
-                        const float cos_x = (glm::dot(v, normal) - beta) / length_v;
+                        const float cos_x = vn / length_v;
                         const float cos_y = std::abs(glm::dot(v, tap_normal)) / length_v;
-                        if (cos_x <= 0.0f || cos_y <= 0.0f) continue;
-                        const float cos_view =
-                            std::max(glm::dot(tap_normal, -glm::normalize(y)), 0.1f);
+                        if (cos_y <= 0.0f) continue;
+                        const glm::vec3 view_ray = glm::normalize(y);
+                        const float cos_phi = -view_ray.z;  // the tap's angle off the optical axis
+                        const float cos_view = std::max(glm::dot(tap_normal, -view_ray), 0.1f);
                         const float ratio = tap_depth / depth;
-                        occlusion = std::max(occlusion, tap.alpha * ratio * ratio *
+                        occlusion = std::max(occlusion, tap.alpha * ratio * ratio * cos_phi *
                                                             (1.0f - vv / radius_squared) * cos_x *
                                                             cos_y / (vv * cos_view));
                     }
