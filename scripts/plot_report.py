@@ -290,6 +290,20 @@ def summary(directory, rows, info, discrepancy_series, images):
             f"correlation of D* against error over the {len(patterns)} patterns, mean over scenes "
             f"and layers: {'; '.join(parts)}; mean {average:.2f}).")
 
+    # 1b. The discrepancy ranking itself (n = 1..64 from discrepancy.csv).
+    d = {name: dict(points) for name, points in discrepancy_series.items()}
+    if "golden" in d:
+        for other in ("optimal", "m8"):
+            if other not in d:
+                continue
+            ns = sorted(set(d["golden"]) & set(d[other]))
+            below = [n for n in ns if d["golden"][n] < d[other][n] * (1 - 1e-12)]
+            add(f"- **Golden angle against {PATTERN_LABELS[other]} in D\\*:** lower at "
+                f"{len(below)} of n = 1..{ns[-1]}" +
+                (f" (from n = {min(below)}; at N = 8, 11, 16, 32: " +
+                 ", ".join(f"{d['golden'][n]:.4f} vs {d[other][n]:.4f}" for n in STUDY_TAPS if n in d[other]) + ")"
+                 if below else "") + ".")
+
     # 2. Best pattern per N.
     for column, what in (("conv_raw_mae", "sampling error"), ("ref_blur_mae", "final error")):
         best = []
@@ -326,8 +340,20 @@ def summary(directory, rows, info, discrepancy_series, images):
                 f"{fmt(b_hi)}, so the remaining error is the estimator's, not the sampling's.")
         t_lo, t_hi = table.value("sao_ms", taps=lo), table.value("sao_ms", taps=hi)
         if t_lo and t_hi:
+            # Every pattern runs the same loop over N taps, so at one N the
+            # patterns' times differ only by where the taps land in the
+            # depth pyramid and by measurement noise.
+            spreads = []
+            for n in taps:
+                times = [table.value("sao_ms", p, n) for p in patterns]
+                times = [t for t in times if t is not None]
+                if len(times) > 1:
+                    spreads.append((max(times) - min(times)) / mean(times))
+            spread = f" At one N the patterns' times differ by up to {100 * max(spreads):.0f}% " \
+                     f"(max - min over mean); a pattern does not change the work per tap, so read " \
+                     f"that as timing noise." if spreads else ""
             add(f"- **Cost:** the SAO pass takes {t_lo:.2f} ms at N = {lo} and {t_hi:.2f} ms at "
-                f"N = {hi} (mean over patterns, scenes, layers).")
+                f"N = {hi} (mean over patterns, scenes, layers).{spread}")
 
     # 5. Layers.
     if len(layers) > 1:
