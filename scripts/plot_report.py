@@ -133,7 +133,9 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out):
                 points = [(x, y, n) for x, y, n in zip(xs, ys, taps) if x is not None and y is not None]
                 if not points:
                     continue
+                # Colour says the pattern, the line style the layer count.
                 ax.plot([p[0] for p in points], [p[1] for p in points], marker="o",
+                        color=f"C{patterns.index(pattern) % 10}",
                         linestyle="-" if layer == 1 else "--",
                         label=f"{PATTERN_LABELS.get(pattern, pattern)}, {layer} layer{'s' if layer > 1 else ''}")
                 if pattern == patterns[0] and layer == layers[-1]:
@@ -375,17 +377,22 @@ def summary(directory, rows, info, discrepancy_series, images):
     # 5. Layers.
     if len(layers) > 1:
         n = taps[-1]
-        worse, better = [], []
+        worse, better, same = [], [], []
         for scene in scenes:
             one = table.value("ref_blur_mae", taps=n, layers=layers[0], scene=scene)
             two = table.value("ref_blur_mae", taps=n, layers=layers[-1], scene=scene)
             if one is None or two is None:
                 continue
-            (worse if two > one else better).append(f"{scene} {fmt(one)} -> {fmt(two)}")
+            # Equal at the four decimals shown counts as equal.
+            if round(two, 4) == round(one, 4):
+                same.append(scene)
+            else:
+                (worse if two > one else better).append(f"{scene} {fmt(one)} -> {fmt(two)}")
         t1 = table.value("sao_ms", layers=layers[0])
         t2 = table.value("sao_ms", layers=layers[-1])
         add(f"- **Two layers against one** (N = {n}, MAE against the reference after the blur): "
-            f"better on {len(better)} scene(s) ({'; '.join(better) or 'none'}), worse on "
+            f"better on {len(better)} scene(s) ({'; '.join(better) or 'none'}), equal on "
+            f"{len(same)} ({', '.join(same) or 'none'}), worse on "
             f"{len(worse)} ({'; '.join(worse) or 'none'}). Two layers cost "
             f"{(t2 / t1) if t1 and t2 else float('nan'):.2f}x the SAO time of one.")
 
