@@ -8,6 +8,7 @@
 #include "deepgi/image_io.hpp"
 #include "deepgi/window_controls.hpp"
 #include "reference_command.hpp"
+#include "report_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -169,6 +170,8 @@ int main(int argc, char** argv) {
     // Subcommands take over the whole command line.
     if (argc > 1 && std::string(argv[1]) == "reference")
         return deepgi_app::run_reference_command(argc, argv);
+    if (argc > 1 && std::string(argv[1]) == "report")
+        return deepgi_app::run_report_command(argc, argv);
     Options options;
     CLI::App app{
         "deepgi: deep G-buffer demo renderer (OpenGL 4.5). Without --headless it opens an "

@@ -1,0 +1,132 @@
+// `deepgi report`: parses the options, runs deepgi::report::run_report in a
+// headless context, then has scripts/plot_report.py draw the figures and
+// write summary.md from the CSV (docs/report.md).
+#include "report_command.hpp"
+
+#include "deepgi/context.hpp"
+#include "deepgi/errors.hpp"
+#include "deepgi/report.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace deepgi_app {
+namespace {
+
+constexpr int exit_bad_input = 2;
+
+struct CommandOptions {
+    deepgi::report::ReportOptions report;
+    std::string size = "320x180";
+    std::string output;
+    bool plots = true;
+    std::string python = "/usr/bin/python3";
+    std::string plot_script = DEEPGI_PLOT_REPORT_SCRIPT;
+};
+
+// Runs `python script dir` without a shell (no quoting of paths), returning
+// its exit status, or -1 when it could not be started.
+int run_plot_script(const std::string& python, const std::string& script,
+                    const std::string& directory) {
+    const pid_t child = fork();
+    if (child < 0) return -1;
+    if (child == 0) {
+        std::vector<char*> args = {const_cast<char*>(python.c_str()),
+                                   const_cast<char*>(script.c_str()),
+                                   const_cast<char*>(directory.c_str()), nullptr};
+        execv(python.c_str(), args.data());
+        _exit(127);
+    }
+    int status = 0;
+    if (waitpid(child, &status, 0) < 0) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int run(CommandOptions& options) {
+    static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
+    std::smatch match;
+    if (!std::regex_match(options.size, match, pattern))
+        throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT", options.size));
+    options.report.width = std::stoi(match[1].str());
+    options.report.height = std::stoi(match[2].str());
+    options.report.output = options.output;
+    deepgi::report::validate(options.report);
+    if (options.plots && access(options.plot_script.c_str(), R_OK) != 0)
+        throw deepgi::InputError(fmt::format(
+            "--plot-script '{}' cannot be read (or pass --no-plots)", options.plot_script));
+
+    options.report.log = [](const std::string& line) {
+        fmt::print("{}\n", line);
+        std::fflush(stdout);
+    };
+    deepgi::HeadlessContext context;
+    const auto result = deepgi::report::run_report(options.report);
+    fmt::print("report: {} rows in {:.0f} s, written to {}\n", result.rows.size(),
+               result.info.seconds, options.output);
+    if (!options.plots) return 0;
+    const int status = run_plot_script(options.python, options.plot_script, options.output);
+    if (status != 0) {
+        fmt::print(stderr, "deepgi report: error: {} {} exited with status {}\n", options.python,
+                   options.plot_script, status);
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int run_report_command(int argc, char** argv) {
+    CommandOptions options;
+    deepgi::report::ReportOptions& report = options.report;
+    CLI::App app{"deepgi report: deep SAO speed against error for tap patterns, counts, layers"};
+    app.add_option("--scenes", report.scenes, "Scenes (built-in names or glTF files)")
+        ->delimiter(',');
+    app.add_option("--taps", report.taps, "Tap counts")->delimiter(',');
+    app.add_option("--patterns", report.patterns, "optimal, tau1, golden, m2, m4, m8")
+        ->delimiter(',');
+    app.add_option("--layers", report.layers, "Layer counts (1, 2)")->delimiter(',');
+    app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT (guard band added)");
+    app.add_option("--rays", report.rays, "Reference rays per pixel");
+    app.add_option("--output", options.output, "Directory for the report");
+    app.add_option("--converged-taps", report.converged_taps,
+                   "Taps of the converged screen-space result");
+    app.add_option("--warmup", report.warmup, "Untimed frames before the timed ones");
+    app.add_option("--frames", report.frames, "Timed frames (the median is reported)");
+    app.add_option("--threads", report.threads, "Reference threads (0: all)");
+    app.add_option("--seed", report.seed, "Reference random seed");
+    app.add_option("--image-taps", report.image_taps,
+                   "Tap count of the per-scene truth/estimate images (nearest in --taps)");
+    app.add_flag("!--no-plots", options.plots, "Skip the matplotlib figures and summary.md");
+    app.add_option("--python", options.python, "Python interpreter with matplotlib");
+    app.add_option("--plot-script", options.plot_script, "scripts/plot_report.py");
+    try {
+        app.parse(argc - 1, argv + 1);
+    } catch (const CLI::CallForHelp&) {
+        fmt::print("{}", app.help());
+        return 0;
+    } catch (const CLI::ParseError& error) {
+        std::string message = error.what();
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        fmt::print(stderr, "deepgi report: error: {}\n", message);
+        return exit_bad_input;
+    }
+    try {
+        return run(options);
+    } catch (const deepgi::InputError& error) {
+        fmt::print(stderr, "deepgi report: error: {}\n", error.what());
+        return exit_bad_input;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "deepgi report: error: {}\n", error.what());
+        return 1;
+    }
+}
+
+}  // namespace deepgi_app

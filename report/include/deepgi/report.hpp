@@ -1,0 +1,151 @@
+#pragma once
+// The speed-against-error report (docs/report.md): renders every combination
+// of scene, tap pattern, tap count and layer count headless, times the deep
+// SAO pass, and measures its visibility against the same estimator at many
+// taps and against the ray-traced reference. The production shaders run with
+// tap headers written at run time into a scratch folder searched before the
+// build's generated headers.
+#include "deepgi/image_io.hpp"
+
+#include <spiral/codegen.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace deepgi::report {
+
+// ---------------------------------------------------------------------------
+// Tap patterns: every one is a spiral with tap i at radius (i + 1/2) / n and
+// angle 2 pi (p / m) (i + 1/2) / n, so all of them go through the optimizer's
+// exact discrepancy and the codegen's tap placement.
+
+// optimal (integer search), tau1, golden (tau = n (2 - phi)), m2, m4, m8
+// (the fractional optima p / m).
+const std::vector<std::string>& pattern_names();
+bool is_pattern_name(std::string_view name);
+
+struct Turns {
+    std::int64_t p = 1;
+    std::int64_t m = 1;
+    double value() const { return double(p) / double(m); }
+};
+
+// The turns of a pattern at n taps. The golden angle is irrational; it is
+// approximated by p / 2^20, which moves no tap by more than 2^-20 of a turn
+// (far below float precision of the offsets) and the discrepancy by at most
+// 2^-19 (the bound spiralgen's `discrepancy --turns golden` states).
+// Throws std::invalid_argument for an unknown name.
+Turns pattern_turns(std::string_view name, int n);
+
+// Exact discrepancy D(n, p / m) of a pattern.
+double pattern_discrepancy(std::string_view name, int n);
+
+// A gather header with the symbols the shaders read (PREFIX_NUM_TAPS,
+// PREFIX_TAP_OFFSETS, PREFIX_TAP_ALPHAS, ...) for any taps.
+std::string format_taps_header(std::string_view prefix,
+                               const std::vector<spiral::codegen::Tap>& taps, Turns turns,
+                               std::string_view what);
+
+// ---------------------------------------------------------------------------
+// Error statistics
+
+struct ErrorStats {
+    double mae = 0.0;
+    double rmse = 0.0;
+    double bias = 0.0;  // mean of estimate - truth
+    long long pixels = 0;
+};
+
+// Over the pixels where mask != 0, of channel-averaged values (the first
+// min(channels, 3) channels). Images must have the same size; mask has one
+// value per pixel. Throws std::invalid_argument otherwise.
+ErrorStats compare_images(const FloatImage& estimate, const FloatImage& truth,
+                          const std::vector<std::uint8_t>& mask);
+
+// ---------------------------------------------------------------------------
+// Rows
+
+// One value of a row; nullopt where the build cannot measure it (written as
+// an empty CSV cell and a JSON null), so the columns stay the same whatever
+// the build holds.
+struct Value {
+    std::string column;
+    std::optional<double> value;
+};
+
+struct Row {
+    std::string scene;
+    std::string pattern;
+    int taps = 0;
+    int layers = 0;
+    std::vector<Value> values;  // same columns in the same order on every row
+
+    std::optional<double> get(std::string_view column) const;
+};
+
+// The measured columns, in order; docs/report.md says what each means.
+const std::vector<std::string>& value_columns();
+
+// scene,pattern,taps,layers,<value_columns...>; numbers in shortest round-trip
+// form, so reading a file back gives the same doubles.
+std::string format_csv(const std::vector<Row>& rows);
+
+struct ReportInfo {
+    std::string renderer;  // GL_RENDERER
+    bool cpu_clock = true;
+    int width = 0, height = 0, guard = 0, rays = 0, converged_taps = 0;
+    int warmup = 0, frames = 0;
+    double seconds = 0.0;
+};
+std::string format_json(const std::vector<Row>& rows, const ReportInfo& info);
+
+// ---------------------------------------------------------------------------
+// Running it
+
+struct ReportOptions {
+    std::vector<std::string> scenes = {"ref-crease", "ref-slab", "ref-board", "ref-bench",
+                                       "cornell",    "atrium",   "warehouse"};
+    std::vector<int> taps = {4, 8, 11, 16, 32, 64};
+    std::vector<std::string> patterns = {"optimal", "tau1", "golden", "m2", "m4", "m8"};
+    std::vector<int> layers = {1, 2};
+    int width = 320;
+    int height = 180;
+    int rays = 512;            // reference rays per pixel
+    int converged_taps = 256;  // "converged" screen-space result: optimal pattern at this count
+    int warmup = 1;            // untimed frames before the timed ones
+    int frames = 5;            // timed frames; the median is reported
+    int threads = 0;           // reference threads (0: all)
+    std::uint64_t seed = 1;
+    // Per-scene images (truth, estimate, signed error) are written for this
+    // configuration, or the nearest tap count in the run.
+    std::string image_pattern = "optimal";
+    int image_taps = 11;
+    std::filesystem::path output;
+    // One line per finished step (for the log); may be empty.
+    std::function<void(const std::string&)> log;
+};
+
+// Throws deepgi::InputError naming the first invalid option.
+void validate(const ReportOptions& options);
+
+struct ReportResult {
+    std::vector<Row> rows;
+    ReportInfo info;
+};
+
+// Renders everything and writes into options.output (created if missing):
+// report.csv, report.json, discrepancy.csv (D(n) of every pattern for
+// n = 1..64) and images/<scene>-{truth,estimate}.pfm (viewport only,
+// NaN where not compared). Needs a current GL context. Every file is
+// written atomically.
+ReportResult run_report(const ReportOptions& options);
+
+// n,pattern,p,m,discrepancy for n = 1..max_n and every pattern.
+std::string format_discrepancy_csv(const std::vector<std::string>& patterns, int max_n);
+
+}  // namespace deepgi::report

@@ -1,0 +1,579 @@
+// The report's measurement loop, its error statistics and its file formats.
+#include "deepgi/context.hpp"
+#include "deepgi/errors.hpp"
+#include "deepgi/reference.hpp"
+#include "deepgi/renderer.hpp"
+#include "deepgi/report.hpp"
+#include "deepgi/settings.hpp"
+
+#include <spiral/fileio.hpp>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace deepgi::report {
+
+namespace {
+
+// A temporal AO pass, when the build has one, publishes its accumulated
+// visibility under this name; the report then fills the ref_temporal_*
+// columns from the last timed frame (warmup + frames frames of history).
+constexpr const char* kTemporalAoOutput = "ao-temporal";
+
+// The ray-traced one-bounce irradiance that the radiosity gather estimates.
+// The reference does not render it yet; once ReferenceImages carries it,
+// return it here (viewport layout as ambient_visibility) and the
+// rad_ref_rel_* columns fill in with no other change.
+std::optional<FloatImage> reference_irradiance(const ReferenceImages& /*images*/) {
+    return std::nullopt;
+}
+
+class ScratchFolder {
+public:
+    ScratchFolder() {
+        static std::atomic<int> counter{0};
+        path_ =
+            fs::temp_directory_path() / fmt::format("deepgi-report-{}-{}", ::getpid(), counter++);
+        fs::create_directories(path_);
+    }
+    ~ScratchFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    ScratchFolder(const ScratchFolder&) = delete;
+    ScratchFolder& operator=(const ScratchFolder&) = delete;
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+// The build's shader folders with the scratch folder searched right after
+// the top-level shader folder, so its headers win over the generated ones.
+ShaderLoader loader_with_override(const fs::path& folder) {
+    auto dirs = ShaderLoader::from_build_configuration().include_dirs();
+    dirs.insert(dirs.begin() + 1, folder);
+    return ShaderLoader(dirs);
+}
+
+void write_text(const fs::path& path, std::string_view text) {
+    spiral::fileio::AtomicFile file(path);
+    file.write(text);
+    file.commit();
+}
+
+// Writes the AO and radiosity tap headers for a pattern at n taps.
+void write_headers(const fs::path& folder, const std::string& pattern, int n) {
+    const Turns turns = pattern_turns(pattern, n);
+    const auto taps = spiral::codegen::spiral_taps(n, turns.p, turns.m);
+    const std::string what = fmt::format("{}, {} taps, {}/{} turns", pattern, n, turns.p, turns.m);
+    write_text(folder / "ao_taps.glsl", format_taps_header("AO", taps, turns, what));
+    write_text(folder / "radiosity_taps.glsl", format_taps_header("RADIOSITY", taps, turns, what));
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+std::optional<double> finite(double value) {
+    if (std::isfinite(value)) return value;
+    return std::nullopt;
+}
+
+std::string file_stem(const std::string& scene) {
+    std::string stem = fs::path(scene).stem().string();
+    for (char& c : stem) {
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
+    }
+    return stem.empty() ? "scene" : stem;
+}
+
+// What one rendered frame gives the report.
+struct Frame {
+    FloatImage depth;  // rasterised layer-0 depth
+    FloatImage ao_raw;
+    FloatImage ao_blurred;
+    FloatImage radiosity_raw;
+    FloatImage radiosity_blurred;
+};
+
+Frame read_frame(const Renderer& renderer) {
+    return {renderer.read_pass_output("gbuffer-depth-layer0"), renderer.read_pass_output("ao-raw"),
+            renderer.read_pass_output("ao-blurred"),
+            renderer.read_pass_output("radiosity-raw-layer0"),
+            renderer.read_pass_output("radiosity-blurred")};
+}
+
+bool has_output(const Renderer& renderer, const std::string& name) {
+    const auto names = renderer.pass_output_names();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Pixels inside the viewport (the guard band excluded) where `keep` holds.
+template <class Keep>
+std::vector<std::uint8_t> viewport_mask(int width, int height, int guard, Keep keep) {
+    std::vector<std::uint8_t> mask(std::size_t(width) * std::size_t(height), 0);
+    for (int y = guard; y < height - guard; ++y) {
+        for (int x = guard; x < width - guard; ++x) {
+            mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] = keep(x, y) ? 1 : 0;
+        }
+    }
+    return mask;
+}
+
+double masked_mean(const FloatImage& image, const std::vector<std::uint8_t>& mask) {
+    const ErrorStats stats =
+        compare_images(image,
+                       FloatImage{image.width, image.height, image.channels,
+                                  std::vector<float>(image.pixels.size(), 0.0f)},
+                       mask);
+    return stats.bias;
+}
+
+// Relative to the mean of the converged image: irradiance has no natural
+// unit, and the scenes differ in brightness by orders of magnitude.
+ErrorStats relative(ErrorStats stats, double scale) {
+    if (!(scale > 0.0)) scale = std::numeric_limits<double>::quiet_NaN();
+    stats.mae /= scale;
+    stats.rmse /= scale;
+    stats.bias /= scale;
+    return stats;
+}
+
+FloatImage crop(const FloatImage& image, int guard, const std::vector<std::uint8_t>& mask) {
+    FloatImage out;
+    out.width = image.width - 2 * guard;
+    out.height = image.height - 2 * guard;
+    out.channels = 1;
+    out.pixels.resize(std::size_t(out.width) * std::size_t(out.height));
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            const std::size_t source =
+                std::size_t(y + guard) * std::size_t(image.width) + std::size_t(x + guard);
+            out.pixels[std::size_t(y) * std::size_t(out.width) + std::size_t(x)] =
+                mask[source] ? image.pixels[source * std::size_t(image.channels)]
+                             : std::numeric_limits<float>::quiet_NaN();
+        }
+    }
+    return out;
+}
+
+int nearest(const std::vector<int>& values, int target) {
+    int best = values.front();
+    for (int v : values) {
+        if (std::abs(v - target) < std::abs(best - target)) best = v;
+    }
+    return best;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+ErrorStats compare_images(const FloatImage& estimate, const FloatImage& truth,
+                          const std::vector<std::uint8_t>& mask) {
+    if (estimate.width != truth.width || estimate.height != truth.height)
+        throw std::invalid_argument(fmt::format("images differ in size: {}x{} and {}x{}",
+                                                estimate.width, estimate.height, truth.width,
+                                                truth.height));
+    const std::size_t count = std::size_t(truth.width) * std::size_t(truth.height);
+    if (mask.size() != count)
+        throw std::invalid_argument(
+            fmt::format("mask has {} values for {} pixels", mask.size(), count));
+    const int estimate_channels = std::min(estimate.channels, 3);
+    const int truth_channels = std::min(truth.channels, 3);
+    auto value = [](const FloatImage& image, int channels, std::size_t i) {
+        double sum = 0.0;
+        for (int c = 0; c < channels; ++c) sum += image.pixels[i * std::size_t(image.channels) + c];
+        return sum / channels;
+    };
+    ErrorStats stats;
+    double sum_abs = 0.0, sum_squares = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < count; ++i) {
+        if (!mask[i]) continue;
+        const double error =
+            value(estimate, estimate_channels, i) - value(truth, truth_channels, i);
+        sum_abs += std::abs(error);
+        sum_squares += error * error;
+        sum += error;
+        ++stats.pixels;
+    }
+    if (stats.pixels == 0) {
+        stats.mae = stats.rmse = stats.bias = std::numeric_limits<double>::quiet_NaN();
+        return stats;
+    }
+    const double n = double(stats.pixels);
+    stats.mae = sum_abs / n;
+    stats.rmse = std::sqrt(sum_squares / n);
+    stats.bias = sum / n;
+    return stats;
+}
+
+const std::vector<std::string>& value_columns() {
+    static const std::vector<std::string> columns = {
+        "discrepancy",
+        "turns",
+        "sao_ms",
+        "ao_blur_ms",
+        "radiosity_ms",
+        "conv_raw_mae",
+        "conv_raw_rmse",
+        "conv_blur_mae",
+        "conv_blur_rmse",
+        "ref_raw_mae",
+        "ref_raw_rmse",
+        "ref_raw_bias",
+        "ref_blur_mae",
+        "ref_blur_rmse",
+        "ref_blur_bias",
+        "ref_temporal_mae",
+        "ref_temporal_rmse",
+        "ref_temporal_bias",
+        "ref_pixels",
+        "rad_conv_raw_rel_mae",
+        "rad_conv_raw_rel_rmse",
+        "rad_conv_blur_rel_mae",
+        "rad_conv_blur_rel_rmse",
+        "rad_ref_rel_mae",
+        "rad_ref_rel_rmse",
+        "rad_ref_rel_bias",
+    };
+    return columns;
+}
+
+std::optional<double> Row::get(std::string_view column) const {
+    for (const Value& v : values)
+        if (v.column == column) return v.value;
+    return std::nullopt;
+}
+
+std::string format_csv(const std::vector<Row>& rows) {
+    std::string text = "scene,pattern,taps,layers";
+    for (const std::string& column : value_columns()) text += "," + column;
+    text += "\n";
+    for (const Row& row : rows) {
+        text += fmt::format("{},{},{},{}", row.scene, row.pattern, row.taps, row.layers);
+        for (const std::string& column : value_columns()) {
+            const auto value = row.get(column);
+            text += value ? fmt::format(",{}", *value) : ",";
+        }
+        text += "\n";
+    }
+    return text;
+}
+
+namespace {
+std::string json_string(std::string_view text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            out += fmt::format("\\u{:04x}", int(c));
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+}  // namespace
+
+std::string format_json(const std::vector<Row>& rows, const ReportInfo& info) {
+    std::string text = "{\"info\":{";
+    text += fmt::format(
+        "\"renderer\":{},\"timing\":{},\"width\":{},\"height\":{},\"guard\":{},\"rays\":{},"
+        "\"converged_taps\":{},\"warmup\":{},\"frames\":{},\"seconds\":{}",
+        json_string(info.renderer),
+        json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
+        info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
+        info.seconds);
+    text += "},\n\"rows\":[\n";
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const Row& row = rows[r];
+        text += fmt::format("{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{}",
+                            json_string(row.scene), json_string(row.pattern), row.taps, row.layers);
+        for (const std::string& column : value_columns()) {
+            const auto value = row.get(column);
+            text += fmt::format(",\"{}\":{}", column, value ? fmt::format("{}", *value) : "null");
+        }
+        text += r + 1 < rows.size() ? "},\n" : "}\n";
+    }
+    return text + "]}\n";
+}
+
+void validate(const ReportOptions& options) {
+    if (options.scenes.empty()) throw InputError("--scenes needs at least one scene");
+    if (options.taps.empty()) throw InputError("--taps needs at least one tap count");
+    for (int n : options.taps) {
+        if (n < 1 || n > 1024)
+            throw InputError(fmt::format("--taps {} is out of range (1 to 1024)", n));
+    }
+    if (options.patterns.empty()) throw InputError("--patterns needs at least one pattern");
+    for (const std::string& name : options.patterns) {
+        if (!is_pattern_name(name))
+            throw InputError(
+                fmt::format("--patterns '{}' is not one of optimal, tau1, golden, "
+                            "m2, m4, m8",
+                            name));
+    }
+    if (options.layers.empty()) throw InputError("--layers needs at least one layer count");
+    for (int layers : options.layers) {
+        if (layers < 1 || layers > limits::max_ao_layers)
+            throw InputError(fmt::format("--layers {} is out of range (1 to {})", layers,
+                                         limits::max_ao_layers));
+    }
+    if (options.width < 8 || options.height < 8 || options.width > 4096 || options.height > 4096)
+        throw InputError(fmt::format("--size {}x{} is out of range (8 to 4096 per side)",
+                                     options.width, options.height));
+    if (options.rays < 1 || options.rays > 1 << 20)
+        throw InputError(fmt::format("--rays {} is out of range (1 to 1048576)", options.rays));
+    if (options.converged_taps < 1 || options.converged_taps > 1024)
+        throw InputError(
+            fmt::format("--converged-taps {} is out of range (1 to 1024)", options.converged_taps));
+    if (options.frames < 1 || options.frames > 1000)
+        throw InputError(fmt::format("--frames {} is out of range (1 to 1000)", options.frames));
+    if (options.warmup < 0 || options.warmup > 1000)
+        throw InputError(fmt::format("--warmup {} is out of range (0 to 1000)", options.warmup));
+    if (options.threads < 0) throw InputError("--threads must be >= 0");
+    if (options.output.empty()) throw InputError("report needs --output DIR");
+    if (fs::exists(options.output) && !fs::is_directory(options.output))
+        throw InputError(fmt::format("--output '{}' is not a directory", options.output.string()));
+    const fs::path parent =
+        options.output.has_parent_path() ? options.output.parent_path() : fs::path(".");
+    if (!fs::is_directory(parent))
+        throw InputError(fmt::format("--output '{}': directory '{}' does not exist",
+                                     options.output.string(), parent.string()));
+    // Scenes last: loading a file can be slow, and a bad name is then found
+    // before anything is rendered.
+    for (const std::string& scene : options.scenes) (void)load_scene(scene);
+}
+
+ReportResult run_report(const ReportOptions& options) {
+    validate(options);
+    const auto start = std::chrono::steady_clock::now();
+    auto log = [&](const std::string& line) {
+        if (options.log) options.log(line);
+    };
+
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    deepgi::validate(settings);
+    const FrameLayout layout = frame_layout(settings);
+    const int guard = layout.guard;
+    const int internal_width = layout.internal_width;
+    const int internal_height = layout.internal_height;
+
+    ScratchFolder headers;
+    const ShaderLoader loader = loader_with_override(headers.path());
+    const int image_taps = nearest(options.taps, options.image_taps);
+    const std::string image_pattern = std::find(options.patterns.begin(), options.patterns.end(),
+                                                options.image_pattern) != options.patterns.end()
+                                          ? options.image_pattern
+                                          : options.patterns.front();
+    const int image_layers = *std::max_element(options.layers.begin(), options.layers.end());
+
+    fs::create_directories(options.output / "images");
+    write_text(options.output / "discrepancy.csv", format_discrepancy_csv(options.patterns, 64));
+
+    ReportResult result;
+    result.info.renderer = query_context_info().renderer;
+    result.info.width = options.width;
+    result.info.height = options.height;
+    result.info.guard = guard;
+    result.info.rays = options.rays;
+    result.info.converged_taps = options.converged_taps;
+    result.info.warmup = options.warmup;
+    result.info.frames = options.frames;
+
+    for (const std::string& scene_name : options.scenes) {
+        const Scene scene = load_scene(scene_name);
+        const Camera& camera = scene.default_camera;
+
+        // The ray-traced truth on the same pixel grid.
+        ReferenceSettings reference;
+        reference.render = settings;
+        reference.rays.min_rays = options.rays;
+        reference.rays.max_rays = options.rays;
+        reference.rays.target_error = 0.0;
+        reference.seed = options.seed;
+        reference.threads = options.threads;
+        const auto reference_start = std::chrono::steady_clock::now();
+        const RayScene rays(scene);
+        const ReferenceImages truth = render_reference(rays, camera, reference);
+        const std::optional<FloatImage> truth_irradiance = reference_irradiance(truth);
+        log(fmt::format(
+            "{}: reference, {} rays per pixel, {:.1f} s", scene_name, options.rays,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start)
+                .count()));
+
+        // The converged screen-space result, one per layer count.
+        std::map<int, Frame> converged;
+        write_headers(headers.path(), "optimal", options.converged_taps);
+        {
+            Renderer renderer(scene, settings, loader);
+            for (int layers : options.layers) {
+                RenderSettings s = settings;
+                s.ao.layers = layers;
+                s.radiosity.layers = layers;
+                renderer.set_settings(s);
+                renderer.render(camera, CameraMotion::cut);
+                converged[layers] = read_frame(renderer);
+            }
+        }
+
+        for (const std::string& pattern : options.patterns) {
+            for (int n : options.taps) {
+                write_headers(headers.path(), pattern, n);
+                const Turns turns = pattern_turns(pattern, n);
+                const double discrepancy = spiral::discrepancy(n, turns.p, turns.m).value();
+                Renderer renderer(scene, settings, loader);
+                result.info.cpu_clock = renderer.timing_uses_cpu_clock();
+                for (int layers : options.layers) {
+                    RenderSettings s = settings;
+                    s.ao.layers = layers;
+                    s.radiosity.layers = layers;
+                    renderer.set_settings(s);
+                    // Errors from the first frame after a cut: no history in it.
+                    renderer.render(camera, CameraMotion::cut);
+                    const Frame frame = read_frame(renderer);
+                    const Frame& reference_frame = converged.at(layers);
+
+                    const auto surface =
+                        viewport_mask(internal_width, internal_height, guard,
+                                      [&](int x, int y) { return frame.depth.at(x, y) > 0.0f; });
+                    // Only where raster and ray tracer see the same surface:
+                    // silhouette pixels would compare different points.
+                    const auto agreed =
+                        viewport_mask(internal_width, internal_height, guard, [&](int x, int y) {
+                            const float a = frame.depth.at(x, y);
+                            const float b = truth.depth_layer0.at(x, y);
+                            return a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b;
+                        });
+
+                    const ErrorStats conv_raw =
+                        compare_images(frame.ao_raw, reference_frame.ao_raw, surface);
+                    const ErrorStats conv_blur =
+                        compare_images(frame.ao_blurred, reference_frame.ao_blurred, surface);
+                    const ErrorStats ref_raw =
+                        compare_images(frame.ao_raw, truth.ambient_visibility, agreed);
+                    const ErrorStats ref_blur =
+                        compare_images(frame.ao_blurred, truth.ambient_visibility, agreed);
+                    const double radiosity_scale =
+                        masked_mean(reference_frame.radiosity_raw, surface);
+                    const double radiosity_blur_scale =
+                        masked_mean(reference_frame.radiosity_blurred, surface);
+                    const ErrorStats rad_raw = relative(
+                        compare_images(frame.radiosity_raw, reference_frame.radiosity_raw, surface),
+                        radiosity_scale);
+                    const ErrorStats rad_blur =
+                        relative(compare_images(frame.radiosity_blurred,
+                                                reference_frame.radiosity_blurred, surface),
+                                 radiosity_blur_scale);
+                    std::optional<ErrorStats> rad_ref;
+                    if (truth_irradiance) {
+                        rad_ref = relative(
+                            compare_images(frame.radiosity_blurred, *truth_irradiance, agreed),
+                            masked_mean(*truth_irradiance, agreed));
+                    }
+
+                    if (pattern == image_pattern && n == image_taps && layers == image_layers) {
+                        const std::string stem = file_stem(scene_name);
+                        write_pfm(options.output / "images" / (stem + "-truth.pfm"),
+                                  crop(truth.ambient_visibility, guard, agreed));
+                        write_pfm(options.output / "images" / (stem + "-estimate.pfm"),
+                                  crop(frame.ao_blurred, guard, agreed));
+                    }
+
+                    // Timing: continuous frames, so history-based passes do
+                    // what they do in an animation.
+                    std::map<std::string, std::vector<double>> samples;
+                    for (int i = 0; i < options.warmup + options.frames; ++i) {
+                        renderer.render(camera);
+                        if (i < options.warmup) continue;
+                        for (const auto& timing : renderer.last_timings())
+                            samples[timing.pass].push_back(timing.milliseconds);
+                    }
+                    std::optional<ErrorStats> ref_temporal;
+                    if (has_output(renderer, kTemporalAoOutput)) {
+                        ref_temporal = compare_images(renderer.read_pass_output(kTemporalAoOutput),
+                                                      truth.ambient_visibility, agreed);
+                    }
+
+                    Row row;
+                    row.scene = scene_name;
+                    row.pattern = pattern;
+                    row.taps = n;
+                    row.layers = layers;
+                    auto add = [&](const std::string& column, std::optional<double> value) {
+                        row.values.push_back({column, value ? finite(*value) : std::nullopt});
+                    };
+                    auto ms = [&](const std::string& pass) -> std::optional<double> {
+                        const auto it = samples.find(pass);
+                        if (it == samples.end()) return std::nullopt;
+                        return median(it->second);
+                    };
+                    auto field = [](const std::optional<ErrorStats>& s,
+                                    double ErrorStats::*member) -> std::optional<double> {
+                        if (!s) return std::nullopt;
+                        return (*s).*member;
+                    };
+                    add("discrepancy", discrepancy);
+                    add("turns", turns.value());
+                    add("sao_ms", ms("sao"));
+                    add("ao_blur_ms", ms("ao_blur"));
+                    add("radiosity_ms", ms("radiosity"));
+                    add("conv_raw_mae", conv_raw.mae);
+                    add("conv_raw_rmse", conv_raw.rmse);
+                    add("conv_blur_mae", conv_blur.mae);
+                    add("conv_blur_rmse", conv_blur.rmse);
+                    add("ref_raw_mae", ref_raw.mae);
+                    add("ref_raw_rmse", ref_raw.rmse);
+                    add("ref_raw_bias", ref_raw.bias);
+                    add("ref_blur_mae", ref_blur.mae);
+                    add("ref_blur_rmse", ref_blur.rmse);
+                    add("ref_blur_bias", ref_blur.bias);
+                    add("ref_temporal_mae", field(ref_temporal, &ErrorStats::mae));
+                    add("ref_temporal_rmse", field(ref_temporal, &ErrorStats::rmse));
+                    add("ref_temporal_bias", field(ref_temporal, &ErrorStats::bias));
+                    add("ref_pixels", double(ref_blur.pixels));
+                    add("rad_conv_raw_rel_mae", rad_raw.mae);
+                    add("rad_conv_raw_rel_rmse", rad_raw.rmse);
+                    add("rad_conv_blur_rel_mae", rad_blur.mae);
+                    add("rad_conv_blur_rel_rmse", rad_blur.rmse);
+                    add("rad_ref_rel_mae", field(rad_ref, &ErrorStats::mae));
+                    add("rad_ref_rel_rmse", field(rad_ref, &ErrorStats::rmse));
+                    add("rad_ref_rel_bias", field(rad_ref, &ErrorStats::bias));
+                    log(fmt::format(
+                        "{} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {:.4f}, vs "
+                        "reference {:.4f} raw {:.4f} blurred",
+                        scene_name, pattern, n, layers, ms("sao").value_or(0.0), conv_raw.mae,
+                        ref_raw.mae, ref_blur.mae));
+                    result.rows.push_back(std::move(row));
+                }
+            }
+        }
+    }
+
+    result.info.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_text(options.output / "report.csv", format_csv(result.rows));
+    write_text(options.output / "report.json", format_json(result.rows, result.info));
+    return result;
+}
+
+}  // namespace deepgi::report

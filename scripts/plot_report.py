@@ -1,0 +1,481 @@
+#!/usr/bin/python3
+"""Figures and summary.md for a `deepgi report` output directory.
+
+    scripts/plot_report.py DIR
+
+Reads DIR/report.csv, DIR/report.json, DIR/discrepancy.csv and
+DIR/images/*.pfm (written by `deepgi report`), writes DIR/error_vs_ms.png,
+DIR/discrepancy.png, DIR/discrepancy_vs_error.png, DIR/images/<scene>.png
+(truth, estimate, signed error) and DIR/summary.md. Every statement in the
+summary is computed from the CSV, so re-running the report rewrites it.
+Files are written to a temporary name and renamed, so a reader never sees
+half a file.
+"""
+import csv
+import json
+import math
+import os
+import sys
+
+PATTERN_LABELS = {
+    "optimal": "optimal tau (m = 1)",
+    "tau1": "tau = 1",
+    "golden": "golden angle",
+    "m2": "optimal p/2",
+    "m4": "optimal p/4",
+    "m8": "optimal p/8",
+}
+STUDY_TAPS = (8, 11, 16, 32)
+
+
+def atomic_write_text(path, text):
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def atomic_savefig(fig, path):
+    tmp = f"{path}.tmp{os.getpid()}.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+
+
+def number(text):
+    return float(text) if text != "" else None
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = []
+        for raw in csv.DictReader(f):
+            row = {"scene": raw["scene"], "pattern": raw["pattern"],
+                   "taps": int(raw["taps"]), "layers": int(raw["layers"])}
+            for key, value in raw.items():
+                if key not in row:
+                    row[key] = number(value)
+            rows.append(row)
+        return rows
+
+
+def read_pfm(path):
+    import numpy as np
+
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        width, height = (int(v) for v in f.readline().split())
+        scale = float(f.readline())
+        channels = 3 if kind == b"PF" else 1
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    image = data.reshape(height, width, channels)[:, :, 0]
+    return np.flipud(image)  # PFM rows run bottom to top
+
+
+def mean(values):
+    values = [v for v in values if v is not None and math.isfinite(v)]
+    return sum(values) / len(values) if values else None
+
+
+def ranks(values):
+    order = sorted(range(len(values)), key=lambda i: values[i])
+    result = [0.0] * len(values)
+    i = 0
+    while i < len(order):
+        j = i
+        while j + 1 < len(order) and values[order[j + 1]] == values[order[i]]:
+            j += 1
+        for k in range(i, j + 1):
+            result[order[k]] = (i + j) / 2.0
+        i = j + 1
+    return result
+
+
+def spearman(xs, ys):
+    if len(xs) < 3:
+        return None
+    rx, ry = ranks(xs), ranks(ys)
+    mx, my = mean(rx), mean(ry)
+    sxy = sum((a - mx) * (b - my) for a, b in zip(rx, ry))
+    sxx = sum((a - mx) ** 2 for a in rx)
+    syy = sum((b - my) ** 2 for b in ry)
+    if sxx == 0 or syy == 0:
+        return None
+    return sxy / math.sqrt(sxx * syy)
+
+
+def fmt(value, digits=4):
+    return "-" if value is None else f"{value:.{digits}f}"
+
+
+class Table:
+    """Means of a column over scenes (and layers, unless given)."""
+
+    def __init__(self, rows):
+        self.rows = rows
+
+    def value(self, column, pattern=None, taps=None, layers=None, scene=None):
+        return mean([r[column] for r in self.rows
+                     if (pattern is None or r["pattern"] == pattern)
+                     and (taps is None or r["taps"] == taps)
+                     and (layers is None or r["layers"] == layers)
+                     and (scene is None or r["scene"] == scene)])
+
+
+def plot_error_vs_ms(plt, table, patterns, taps, layers, out):
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    panels = [("ref_blur_mae", "MAE against the ray-traced reference (after the blur)"),
+              ("conv_raw_mae", f"MAE against the converged estimator (before the blur)")]
+    for ax, (column, title) in zip(axes, panels):
+        for pattern in patterns:
+            for layer in layers:
+                xs = [table.value("sao_ms", pattern, n, layer) for n in taps]
+                ys = [table.value(column, pattern, n, layer) for n in taps]
+                points = [(x, y, n) for x, y, n in zip(xs, ys, taps) if x is not None and y is not None]
+                if not points:
+                    continue
+                # Colour says the pattern, the line style the layer count.
+                ax.plot([p[0] for p in points], [p[1] for p in points], marker="o",
+                        color=f"C{patterns.index(pattern) % 10}",
+                        linestyle="-" if layer == 1 else "--",
+                        label=f"{PATTERN_LABELS.get(pattern, pattern)}, {layer} layer{'s' if layer > 1 else ''}")
+                if pattern == patterns[0] and layer == layers[-1]:
+                    for x, y, n in points:
+                        ax.annotate(f"N={n}", (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        ax.set_xlabel("deep SAO pass (ms, median, mean over scenes)")
+        ax.set_ylabel("mean absolute error of ambient visibility")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(title, fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[1].legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    atomic_savefig(fig, out)
+    plt.close(fig)
+
+
+def plot_discrepancy(plt, path, out):
+    series = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            series.setdefault(row["pattern"], []).append((int(row["n"]), float(row["discrepancy"])))
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for pattern, points in series.items():
+        ax.plot([p[0] for p in points], [p[1] for p in points], marker=".", linewidth=1,
+                label=PATTERN_LABELS.get(pattern, pattern))
+    for n in STUDY_TAPS:
+        ax.axvline(n, color="grey", alpha=0.3, linewidth=0.8)
+    ax.set_xlabel("taps n")
+    ax.set_ylabel("annular-sector discrepancy D*(n)")
+    ax.set_yscale("log")
+    ax.set_title("Exact discrepancy of each tap pattern (grey: N = 8, 11, 16, 32)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    atomic_savefig(fig, out)
+    plt.close(fig)
+    return series
+
+
+def plot_discrepancy_vs_error(plt, table, patterns, study, out):
+    fig, axes = plt.subplots(1, len(study), figsize=(4 * len(study), 4), squeeze=False)
+    for ax, n in zip(axes[0], study):
+        for pattern in patterns:
+            d = table.value("discrepancy", pattern, n)
+            e = table.value("conv_raw_mae", pattern, n)
+            if d is None or e is None:
+                continue
+            ax.scatter([d], [e], label=PATTERN_LABELS.get(pattern, pattern))
+        ax.set_title(f"N = {n}")
+        ax.set_xlabel("D*(N)")
+        ax.set_ylabel("MAE vs converged (raw)")
+        ax.grid(True, alpha=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    atomic_savefig(fig, out)
+    plt.close(fig)
+
+
+def plot_images(plt, directory, scenes):
+    import numpy as np
+
+    made = []
+    for scene in scenes:
+        stem = os.path.splitext(os.path.basename(scene))[0]
+        stem = "".join(c if c.isalnum() or c == "-" else "-" for c in stem) or "scene"
+        truth_path = os.path.join(directory, "images", f"{stem}-truth.pfm")
+        estimate_path = os.path.join(directory, "images", f"{stem}-estimate.pfm")
+        if not (os.path.exists(truth_path) and os.path.exists(estimate_path)):
+            continue
+        truth, estimate = read_pfm(truth_path), read_pfm(estimate_path)
+        error = estimate - truth
+        limit = max(0.05, float(np.nanpercentile(np.abs(error), 99))) if np.isfinite(error).any() else 0.05
+        fig, axes = plt.subplots(1, 3, figsize=(13, 3.2))
+        for ax, image, title, cmap, lo, hi in (
+                (axes[0], truth, "ray-traced AV", "gray", 0, 1),
+                (axes[1], estimate, "deep SAO (blurred)", "gray", 0, 1),
+                (axes[2], error, "estimate - truth", "coolwarm", -limit, limit)):
+            shown = ax.imshow(image, cmap=cmap, vmin=lo, vmax=hi, interpolation="nearest")
+            ax.set_title(f"{scene}: {title}", fontsize=9)
+            ax.axis("off")
+            fig.colorbar(shown, ax=ax, fraction=0.03)
+        fig.tight_layout()
+        out = os.path.join(directory, "images", f"{stem}.png")
+        atomic_savefig(fig, out)
+        plt.close(fig)
+        made.append((scene, f"images/{stem}.png"))
+    return made
+
+
+def summary(directory, rows, info, discrepancy_series, images):
+    table = Table(rows)
+    patterns = list(dict.fromkeys(r["pattern"] for r in rows))
+    taps = sorted({r["taps"] for r in rows})
+    layers = sorted({r["layers"] for r in rows})
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    study = [n for n in STUDY_TAPS if n in taps]
+    top = layers[-1]
+    lines = []
+    add = lines.append
+    add("# Deep SAO: speed against error\n")
+    add(f"{info.get('renderer', '?')}, {info.get('width')}x{info.get('height')} (guard band "
+        f"{info.get('guard')} px), reference {info.get('rays')} rays per pixel, converged = "
+        f"optimal tau at {info.get('converged_taps')} taps, timing: {info.get('timing')}, "
+        f"median of {info.get('frames')} frames. Scenes: {', '.join(scenes)}. "
+        f"Run time {info.get('seconds', 0):.0f} s.\n")
+    add("Errors are mean absolute errors of ambient visibility (AV in [0, 1]) averaged over the "
+        "scenes; 'converged' is the same estimator at many taps (isolates the sampling error), "
+        "'reference' is the Embree ray-traced AV (the whole error).\n")
+
+    add(f"## Tables ({top} layer{'s' if top > 1 else ''})\n")
+    for column, title in (("sao_ms", "SAO pass (ms)"),
+                          ("conv_raw_mae", "MAE against converged, before the blur"),
+                          ("ref_raw_mae", "MAE against the reference, before the blur"),
+                          ("ref_blur_mae", "MAE against the reference, after the blur"),
+                          ("ref_blur_bias", "Bias against the reference, after the blur"),
+                          ("rad_conv_raw_rel_mae", "Radiosity: relative MAE against converged, raw")):
+        if all(table.value(column, p, n, top) is None for p in patterns for n in taps):
+            continue
+        add(f"**{title}**\n")
+        add("| N | " + " | ".join(PATTERN_LABELS.get(p, p) for p in patterns) + " |")
+        add("|--:|" + "--:|" * len(patterns))
+        for n in taps:
+            digits = 2 if column == "sao_ms" else 4
+            add(f"| {n} | " + " | ".join(fmt(table.value(column, p, n, top), digits) for p in patterns) + " |")
+        add("")
+
+    add("## Conclusions\n")
+    # 1. Discrepancy as a predictor of image error.
+    verdicts = []
+    for column, what in (("conv_raw_mae", "sampling error (against converged, before the blur)"),
+                         ("ref_blur_mae", "final error (against the reference, after the blur)")):
+        def correlations(chosen):
+            parts, rhos = [], []
+            for n in study:
+                ds = [table.value("discrepancy", p, n) for p in chosen]
+                es = [table.value(column, p, n) for p in chosen]
+                pairs = [(d, e) for d, e in zip(ds, es) if d is not None and e is not None]
+                rho = spearman([p[0] for p in pairs], [p[1] for p in pairs])
+                if rho is not None:
+                    rhos.append(rho)
+                parts.append(f"N = {n}: {fmt(rho, 2)}")
+            return parts, mean(rhos)
+
+        parts, average = correlations(patterns)
+        # tau = 1 is far worse than every other pattern in both D* and error,
+        # which alone makes the correlation positive; the question that
+        # matters is whether D* ranks the good patterns.
+        good = [p for p in patterns if p != "tau1"]
+        good_parts, good_average = correlations(good) if len(good) >= 3 and len(good) < len(patterns) else ([], None)
+        verdicts.append((what, average))
+        if average is None:
+            continue
+        if average >= 0.6:
+            verdict = "yes: the patterns with lower D* have lower error"
+        elif average >= 0.3:
+            verdict = "only weakly"
+        else:
+            verdict = "no: the ordering by D* does not carry over to the image"
+        add(f"- **Does lower discrepancy predict lower {what}?** {verdict} (Spearman rank "
+            f"correlation of D* against error over the {len(patterns)} patterns, mean over scenes "
+            f"and layers: {'; '.join(parts)}; mean {average:.2f})." +
+            (f" Without tau = 1, among the {len(good)} patterns whose D* is within a few percent "
+             f"of each other: {'; '.join(good_parts)}; mean {good_average:.2f}"
+             f"{' (D* does not rank them)' if good_average < 0.3 else ''}."
+             if good_average is not None else ""))
+        if good_average is not None:
+            verdicts.append((what + " among the near-optimal patterns", good_average))
+
+    # 1b. The discrepancy ranking itself (n = 1..64 from discrepancy.csv).
+    d = {name: dict(points) for name, points in discrepancy_series.items()}
+    if "golden" in d:
+        for other in ("optimal", "m8"):
+            if other not in d:
+                continue
+            ns = sorted(set(d["golden"]) & set(d[other]))
+            below = [n for n in ns if d["golden"][n] < d[other][n] * (1 - 1e-12)]
+            add(f"- **Golden angle against {PATTERN_LABELS[other]} in D\\*:** lower at "
+                f"{len(below)} of n = 1..{ns[-1]}" +
+                (f" (from n = {min(below)}; at N = 8, 11, 16, 32: " +
+                 ", ".join(f"{d['golden'][n]:.4f} vs {d[other][n]:.4f}" for n in STUDY_TAPS if n in d[other]) + ")"
+                 if below else "") + ".")
+
+    # 2. Best pattern per N.
+    for column, what in (("conv_raw_mae", "sampling error"), ("ref_blur_mae", "final error")):
+        best = []
+        for n in study:
+            scored = [(table.value(column, p, n), p) for p in patterns if table.value(column, p, n) is not None]
+            if scored:
+                e, p = min(scored)
+                opt = table.value(column, "optimal", n)
+                rel = f", optimal tau {fmt(opt)}" if opt is not None and p != "optimal" else ""
+                best.append(f"N = {n}: {PATTERN_LABELS.get(p, p)} ({fmt(e)}{rel})")
+        if best:
+            add(f"- **Lowest {what} per N:** " + "; ".join(best) + ".")
+
+    # 3. Denominator: integer optimum against the fractional optima.
+    fam = [p for p in ("optimal", "m2", "m4", "m8") if p in patterns]
+    if len(fam) > 1 and study:
+        scores = {p: mean([table.value("conv_raw_mae", p, n) for n in study]) for p in fam}
+        ds = {p: mean([table.value("discrepancy", p, n) for n in study]) for p in fam}
+        order = sorted(fam, key=lambda p: scores[p] if scores[p] is not None else 1e9)
+        valid = [v for v in scores.values() if v is not None]
+        spread = (max(valid) - min(valid)) / min(valid) if valid and min(valid) > 0 else float("nan")
+        add("- **Turn denominator m** (mean over N = " + ", ".join(map(str, study)) + "): " +
+            "; ".join(f"m = {1 if p == 'optimal' else p[1:]}: sampling MAE {fmt(scores[p])}, D* {fmt(ds[p])}"
+                      for p in fam) + f". Lowest error: {PATTERN_LABELS.get(order[0], order[0])}, but "
+            f"the four differ by {100 * spread:.1f}% in error while D* falls "
+            f"{100 * (ds[fam[0]] - ds[fam[-1]]) / ds[fam[0]]:.1f}% from the first to the last.")
+
+    # 4. Taps.
+    if len(taps) > 1:
+        lo, hi = taps[0], taps[-1]
+        c_lo, c_hi = table.value("conv_raw_mae", taps=lo), table.value("conv_raw_mae", taps=hi)
+        r_lo, r_hi = table.value("ref_blur_mae", taps=lo), table.value("ref_blur_mae", taps=hi)
+        b_hi = table.value("ref_blur_bias", taps=hi)
+        if None not in (c_lo, c_hi, r_lo, r_hi):
+            add(f"- **More taps:** from N = {lo} to N = {hi} the sampling error falls "
+                f"{c_lo / c_hi:.1f}x ({fmt(c_lo)} to {fmt(c_hi)}), but the error against the reference "
+                f"only {r_lo / r_hi:.2f}x ({fmt(r_lo)} to {fmt(r_hi)}); at N = {hi} the mean bias is "
+                f"{fmt(b_hi)}, so the remaining error is the estimator's, not the sampling's.")
+        t_lo, t_hi = table.value("sao_ms", taps=lo), table.value("sao_ms", taps=hi)
+        if t_lo and t_hi:
+            # Every pattern runs the same loop over N taps, so at one N the
+            # patterns' times differ only by where the taps land in the
+            # depth pyramid and by measurement noise.
+            spreads = []
+            for n in taps:
+                times = [table.value("sao_ms", p, n) for p in patterns]
+                times = [t for t in times if t is not None]
+                if len(times) > 1:
+                    spreads.append((max(times) - min(times)) / mean(times))
+            spread = f" At one N the patterns' times differ by up to {100 * max(spreads):.0f}% " \
+                     f"(max - min over mean); a pattern does not change the work per tap, so read " \
+                     f"that as timing noise." if spreads else ""
+            add(f"- **Cost:** the SAO pass takes {t_lo:.2f} ms at N = {lo} and {t_hi:.2f} ms at "
+                f"N = {hi} (mean over patterns, scenes, layers).{spread}")
+
+    # 5. Layers.
+    if len(layers) > 1:
+        n = taps[-1]
+        worse, better, same = [], [], []
+        for scene in scenes:
+            one = table.value("ref_blur_mae", taps=n, layers=layers[0], scene=scene)
+            two = table.value("ref_blur_mae", taps=n, layers=layers[-1], scene=scene)
+            if one is None or two is None:
+                continue
+            # Equal at the four decimals shown counts as equal.
+            if round(two, 4) == round(one, 4):
+                same.append(scene)
+            else:
+                (worse if two > one else better).append(f"{scene} {fmt(one)} -> {fmt(two)}")
+        t1 = table.value("sao_ms", layers=layers[0])
+        t2 = table.value("sao_ms", layers=layers[-1])
+        add(f"- **Two layers against one** (N = {n}, MAE against the reference after the blur): "
+            f"better on {len(better)} scene(s) ({'; '.join(better) or 'none'}), equal on "
+            f"{len(same)} ({', '.join(same) or 'none'}), worse on "
+            f"{len(worse)} ({'; '.join(worse) or 'none'}). Two layers cost "
+            f"{(t2 / t1) if t1 and t2 else float('nan'):.2f}x the SAO time of one.")
+
+    # 6. Radiosity.
+    if study and any(table.value("rad_conv_raw_rel_mae", p, n) is not None for p in patterns for n in study):
+        parts = []
+        for n in study:
+            scored = [(table.value("rad_conv_raw_rel_mae", p, n), p) for p in patterns
+                      if table.value("rad_conv_raw_rel_mae", p, n) is not None]
+            e, p = min(scored)
+            parts.append(f"N = {n}: {PATTERN_LABELS.get(p, p)} ({fmt(e, 3)}; optimal tau "
+                         f"{fmt(table.value('rad_conv_raw_rel_mae', 'optimal', n), 3)})")
+        add("- **Radiosity** (relative MAE of layer-0 irradiance against its own converged gather, "
+            "same pattern as the AO): lowest per N: " + "; ".join(parts) + ". No ray-traced "
+            "irradiance yet, so no error against the truth.")
+    if all(r.get("ref_temporal_mae") is None for r in rows):
+        add("- **Temporal accumulation:** this build has no temporal AO output, so those columns are empty.")
+
+    # 7. Against the paper.
+    against = []
+    misses = [f"{what} (mean rank correlation {average:.2f})" for what, average in verdicts
+              if average is not None and average < 0.3]
+    if misses:
+        against.append("lower D* does not predict lower " + "; nor ".join(misses) +
+                       ", so minimising D* is not what makes a spiral good here")
+    if study:
+        losses = [n for n in study
+                  if table.value("conv_raw_mae", "golden", n) is not None
+                  and table.value("conv_raw_mae", "optimal", n) is not None
+                  and table.value("conv_raw_mae", "golden", n) < table.value("conv_raw_mae", "optimal", n)]
+        if losses:
+            against.append("the golden-angle spiral, which no table is needed for, has lower sampling "
+                           "error than the optimal tau at N = " + ", ".join(map(str, losses)))
+    if len(layers) > 1:
+        n = taps[-1]
+        one = table.value("ref_blur_mae", taps=n, layers=layers[0])
+        two = table.value("ref_blur_mae", taps=n, layers=layers[-1])
+        if one is not None and two is not None and two > one:
+            against.append(f"two layers measure worse than one on average against the ray-traced truth "
+                           f"({fmt(one)} against {fmt(two)} at N = {n})")
+    add("- **Against the paper:** " + ("; ".join(against) + "." if against else
+                                       "nothing in this run contradicts it."))
+    add("")
+
+    add("## Figures\n")
+    add("![error against milliseconds](error_vs_ms.png)\n")
+    add("![discrepancy of each pattern](discrepancy.png)\n")
+    add("![discrepancy against error](discrepancy_vs_error.png)\n")
+    for scene, path in images:
+        add(f"![{scene}: truth, estimate, signed error]({path})\n")
+    atomic_write_text(os.path.join(directory, "summary.md"), "\n".join(lines))
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: plot_report.py DIR")
+    directory = sys.argv[1]
+    rows = read_rows(os.path.join(directory, "report.csv"))
+    if not rows:
+        sys.exit("plot_report: report.csv has no rows")
+    with open(os.path.join(directory, "report.json")) as f:
+        info = json.load(f)["info"]
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        sys.exit("plot_report: matplotlib is missing (Debian: python3-matplotlib)")
+    table = Table(rows)
+    patterns = list(dict.fromkeys(r["pattern"] for r in rows))
+    taps = sorted({r["taps"] for r in rows})
+    layers = sorted({r["layers"] for r in rows})
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    plot_error_vs_ms(plt, table, patterns, taps, layers, os.path.join(directory, "error_vs_ms.png"))
+    series = plot_discrepancy(plt, os.path.join(directory, "discrepancy.csv"),
+                              os.path.join(directory, "discrepancy.png"))
+    study = [n for n in STUDY_TAPS if n in taps] or taps
+    plot_discrepancy_vs_error(plt, table, patterns, study,
+                              os.path.join(directory, "discrepancy_vs_error.png"))
+    images = plot_images(plt, directory, scenes)
+    summary(directory, rows, info, series, images)
+
+
+if __name__ == "__main__":
+    main()
