@@ -101,13 +101,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.ao = options.ao;
     settings.radiosity = options.radiosity;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
-    // Unless --ao-bias is given, the solid-angle method runs without a bias:
-    // a coplanar point's term is of the second order in its reconstruction
-    // error (sao.frag), and every centimetre of threshold drops real
-    // occluders next to creases. The published method subtracts its bias
-    // and keeps the AoSettings default it was tuned with.
-    if (!options.ao_bias_given && settings.ao.method == deepgi::AoMethod::solid_angle)
-        settings.ao.bias = 0.0f;
+    if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
     settings.gl_debug = options.gl_debug;
     settings.shadow_map_size = options.shadow_map_size;
     deepgi::validate(settings);
@@ -250,8 +244,9 @@ int main(int argc, char** argv) {
     auto* ao_bias = app.add_option(
         "--ao-bias", options.ao.bias,
         fmt::format("Deep SAO: occluders closer than this to the tangent plane are ignored (m); "
-                    "default 0, {} with --ao-method published",
-                    deepgi::AoSettings{}.bias));
+                    "default {} with solid-angle, {} with published",
+                    deepgi::default_ao_bias(deepgi::AoMethod::solid_angle),
+                    deepgi::default_ao_bias(deepgi::AoMethod::published)));
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
         ->capture_default_str();
     app.add_option("--ao-q", options.ao.q,

@@ -27,7 +27,6 @@ RenderSettings accuracy_settings(int layers) {
     settings.height = height;
     settings.shadow_map_size = 64;
     settings.ao.layers = layers;
-    settings.ao.bias = 0.0f;  // deepgi's default for the solid-angle method
     return settings;
 }
 

@@ -84,6 +84,7 @@ TEST_CASE("sao: deep SAO matches the CPU evaluation with the build-time taps", "
             RenderSettings settings = small_settings(160, 90);
             settings.ao.layers = layers;
             settings.ao.method = method;
+            settings.ao.bias = deepgi::default_ao_bias(method);
             check_against_reference(make_builtin_scene("cornell"), settings, loader, taps);
             check_against_reference(occluded_floor(), settings, loader, taps);
         }

@@ -105,11 +105,21 @@ inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 }  // namespace limits
 
+// The bias each estimator was derived or tuned with. Solid-angle needs none:
+// a coplanar point's term is of the second order in its reconstruction error
+// (sao.frag), and every centimetre of threshold drops real occluders next to
+// creases. The published method subtracts its bias and keeps the 1 cm it was
+// tuned with. AoSettings{} holds the solid-angle default; front ends that switch
+// method without an explicit bias take this one.
+constexpr float default_ao_bias(AoMethod method) {
+    return method == AoMethod::published ? 0.01f : 0.0f;
+}
+
 // Deep SAO (design.md 3, step 4; docs/deep-sao.md). Tap count and spiral turns
 // come from the generated ao_taps.glsl, not from here.
 struct AoSettings {
     float radius = 0.5f;     // world-space gather radius r (m)
-    float bias = 0.01f;      // beta (m): ignores occluders closer than this to the tangent plane
+    float bias = 0.0f;       // beta (m): see default_ao_bias()
     float intensity = 1.0f;  // exponent applied to the visibility
     float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
