@@ -33,6 +33,8 @@
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER0 17       // this frame's E of layer 0 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_RAW_LAYER1 18       // this frame's E of layer 1 (debug view)
 #define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY 19      // last frame's depth + normal key (temporal filter)
+#define DEEPGI_UNIT_BLUR_SECOND_SOURCE 23         // the bilateral blur's second signal, same weights
+#define DEEPGI_UNIT_BLUR_KEY 24                   // RGBA32F: layer-0 normal (xyz) and linear depth (w)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0

@@ -48,17 +48,16 @@ glm::mat4 guard_band_projection(const Camera& camera, const RenderSettings& sett
 
 const std::vector<PassFactory>& default_pass_list() {
     static const std::vector<PassFactory> passes = {
-        make_shadow_pass,          //
-        make_gbuffer_pass,         //
-        make_direct_light_pass,    //
-        make_depth_pyramid_pass,   //
-        make_sao_pass,             //
-        make_ao_blur_pass,         //
-        make_radiosity_pass,       //
-        make_radiosity_blur_pass,  //
-        make_compose_pass,         //
-        make_tonemap_pass,         // final image only
-        make_debug_view_pass,      // any other view
+        make_shadow_pass,         //
+        make_gbuffer_pass,        //
+        make_direct_light_pass,   //
+        make_depth_pyramid_pass,  //
+        make_sao_pass,            //
+        make_radiosity_pass,      //
+        make_blur_pass,           // AO and radiosity E share one bilateral blur
+        make_compose_pass,        //
+        make_tonemap_pass,        // final image only
+        make_debug_view_pass,     // any other view
     };
     return passes;
 }
