@@ -19,6 +19,10 @@ layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth
 layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ambient_visibility;  // blurred deep SAO
 layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
 
+// x: AO, y: radiosity, z: environment; 0 leaves that term out (the
+// direct-only / + AO / + bounces comparison images).
+layout(location = DEEPGI_UNIFORM_COMPOSE_TERMS) uniform ivec3 terms;
+
 layout(location = 0) out vec3 out_radiance;
 
 const float pi = 3.14159265;
@@ -44,9 +48,11 @@ void main() {
   vec3 albedo = srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
   vec3 world_normal = normalize(transpose(mat3(frame.view)) * normal);
-  vec4 gathered = texelFetch(radiosity, texel.xy, 0);
+  vec4 gathered = terms.y != 0 ? texelFetch(radiosity, texel.xy, 0) : vec4(0.0);
   float confidence = clamp(gathered.a, 0.0, 1.0);
-  vec3 irradiance = gathered.rgb + environment_irradiance(world_normal) * (1.0 - confidence);
+  vec3 environment = terms.z != 0 ? environment_irradiance(world_normal) : vec3(0.0);
+  vec3 irradiance = gathered.rgb + environment * (1.0 - confidence);
+  float visibility = terms.x != 0 ? texelFetch(ambient_visibility, texel.xy, 0).r : 1.0;
   out_radiance = texelFetch(direct_light, texel, 0).rgb + texelFetch(gbuffer_emissive, texel, 0).rgb +
-                 albedo / pi * irradiance * texelFetch(ambient_visibility, texel.xy, 0).r;
+                 albedo / pi * irradiance * visibility;
 }

@@ -38,6 +38,8 @@
 #define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
 #define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
 #define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
+#define DEEPGI_UNIT_BLUR_SECOND_SOURCE 25  // the bilateral blur's second signal, same weights
+#define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -80,6 +82,7 @@
 #define DEEPGI_UNIFORM_RADIOSITY_MIP 28         // vec2: q (px) and deepest MIP level the taps may read
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
+#define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

@@ -49,6 +49,9 @@ struct Options {
     std::string camera;  // a file camera's name or index; empty for the scene's default
     bool print_timings = false;
     bool gl_debug = false;
+    bool no_ao = false;
+    bool no_radiosity = false;
+    bool no_environment = false;
     deepgi::AoSettings ao;
     deepgi::RadiositySettings radiosity;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
@@ -104,6 +107,9 @@ deepgi::RenderSettings settings_from(const Options& options) {
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
     settings.gl_debug = options.gl_debug;
     settings.shadow_map_size = options.shadow_map_size;
+    settings.ao.enabled = !options.no_ao;
+    settings.radiosity.enabled = !options.no_radiosity;
+    settings.environment = !options.no_environment;
     deepgi::validate(settings);
     return settings;
 }
@@ -229,6 +235,13 @@ int main(int argc, char** argv) {
                    "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory");
     app.add_flag("--gl-debug", options.gl_debug,
                  "Turn GL errors into an error that names the pass (KHR_debug callback)");
+    // Which indirect terms compose adds (docs/radiosity.md, "What each part adds").
+    app.add_flag("--no-ao", options.no_ao, "Compose without the deep SAO (visibility 1)");
+    app.add_flag("--no-radiosity", options.no_radiosity,
+                 "Compose without the deep radiosity (the environment term fills everywhere)");
+    app.add_flag("--no-environment", options.no_environment,
+                 "Compose without the environment term (with --no-radiosity --no-ao: direct "
+                 "light and emissive only)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-layers", options.ao.layers,
                    fmt::format("Deep SAO: G-buffer layers the taps test, 1 to {}",

@@ -54,10 +54,9 @@ const std::vector<PassFactory>& default_pass_list() {
         make_depth_pyramid_pass,      //
         make_sao_pass,                //
         make_ao_temporal_pass,        //
-        make_ao_blur_pass,            //
         make_radiosity_prepare_pass,  //
         make_radiosity_pass,          //
-        make_radiosity_blur_pass,     //
+        make_blur_pass,               // AO and radiosity E share one bilateral blur
         make_compose_pass,            //
         make_tonemap_pass,            // final image only
         make_debug_view_pass,         // any other view

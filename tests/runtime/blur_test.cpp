@@ -1,11 +1,16 @@
 // The bilateral blur on hand-made guides, where the right answer is known
 // without running a blur: constants stay constant, steps and creases stay
-// sharp, a flat plane gives back the generated Gaussian.
+// sharp, a flat plane gives back the generated Gaussian. On rough guides
+// (fractional weights everywhere) against a CPU evaluation of the same
+// formula, for one source and for two sources sharing one set of weights.
+#include "deepgi/errors.hpp"
 #include "passes/passes.hpp"
 #include "sao_test_support.hpp"
 #include "shader_shared.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <glm/gtc/packing.hpp>
 
 #include <functional>
 #include <numeric>
@@ -47,10 +52,18 @@ glm::vec2 encode_octahedral(glm::vec3 n) {
             (1.0f - std::abs(n.x)) * (n.y >= 0.0f ? 1.0f : -1.0f)};
 }
 
-// Runs the pass on `source` (one float per pixel) and returns the output.
-std::vector<float> run_blur(const ShaderLoader& loader, const Guide& guide,
-                            const std::vector<float>& source,
-                            const BilateralBlurParameters& parameters = {}) {
+// A source image: `channels` (1 or 4) floats per pixel.
+struct Signal {
+    int channels = 1;
+    std::vector<float> values;
+};
+
+// Runs the blur on every source at once (one blur, shared weights) and
+// returns the outputs, in the sources' order. Float formats throughout, so
+// only the blur's arithmetic separates it from the CPU evaluation.
+std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& guide,
+                                     const std::vector<Signal>& sources,
+                                     const BilateralBlurParameters& parameters = {}) {
     const int w = guide.width;
     const int h = guide.height;
     shader_shared::FrameConstants constants{};
@@ -71,17 +84,128 @@ std::vector<float> run_blur(const ShaderLoader& loader, const Guide& guide,
     glTextureSubImage2D(depth.get(), 0, 0, 0, w, h, GL_RG, GL_FLOAT, depth_rg.data());
     gl::Texture normal = gl::create_texture_array(GL_RG16F, w, h, 2);
     glTextureSubImage3D(normal.get(), 0, 0, 0, 0, w, h, 1, GL_RG, GL_FLOAT, normal_rg.data());
-    gl::Texture input = gl::create_texture_2d(GL_R32F, w, h);
-    glTextureSubImage2D(input.get(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, source.data());
+    std::vector<gl::Texture> inputs;
+    std::vector<GLuint> input_names;
+    std::vector<GLenum> formats;
+    for (const Signal& source : sources) {
+        const bool rgba = source.channels == 4;
+        formats.push_back(rgba ? GL_RGBA32F : GL_R32F);
+        inputs.push_back(gl::create_texture_2d(formats.back(), w, h));
+        glTextureSubImage2D(inputs.back().get(), 0, 0, 0, w, h, rgba ? GL_RGBA : GL_RED, GL_FLOAT,
+                            source.values.data());
+        input_names.push_back(inputs.back().get());
+    }
     gl::VertexArray empty = gl::create_vertex_array();
 
-    BilateralBlur blur = create_bilateral_blur(loader, parameters);
-    resize_bilateral_blur(blur, w, h, GL_R32F);
-    run_bilateral_blur(blur, input.get(), depth.get(), normal.get(), empty.get());
-    std::vector<float> output(source.size());
-    glGetTextureImage(blur.output.get(), 0, GL_RED, GL_FLOAT,
-                      GLsizei(output.size() * sizeof(float)), output.data());
-    return output;
+    BilateralBlur blur = create_bilateral_blur(loader, int(sources.size()), parameters);
+    resize_bilateral_blur(blur, w, h, formats);
+    run_bilateral_blur(blur, input_names, depth.get(), normal.get(), empty.get());
+    std::vector<Signal> outputs;
+    const GLuint textures[] = {blur.output.get(), blur.second_output.get()};
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        Signal output{sources[i].channels, std::vector<float>(sources[i].values.size())};
+        glGetTextureImage(textures[i], 0, output.channels == 4 ? GL_RGBA : GL_RED, GL_FLOAT,
+                          GLsizei(output.values.size() * sizeof(float)), output.values.data());
+        outputs.push_back(std::move(output));
+    }
+    return outputs;
+}
+
+// Runs the pass on `source` (one float per pixel) and returns the output.
+std::vector<float> run_blur(const ShaderLoader& loader, const Guide& guide,
+                            const std::vector<float>& source,
+                            const BilateralBlurParameters& parameters = {}) {
+    return run_blur_sources(loader, guide, {Signal{1, source}}, parameters).front().values;
+}
+
+// The shader's decode of an octahedral normal stored as RG16F.
+glm::vec3 decode_stored_normal(glm::vec3 n) {
+    glm::vec2 e = encode_octahedral(n);
+    e = {glm::unpackHalf1x16(glm::packHalf1x16(e.x)), glm::unpackHalf1x16(glm::packHalf1x16(e.y))};
+    glm::vec3 d(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
+    const float t = std::max(-d.z, 0.0f);
+    d.x += d.x >= 0.0f ? -t : t;
+    d.y += d.y >= 0.0f ? -t : t;
+    return glm::normalize(d);
+}
+
+// CPU evaluation of the separable bilateral blur (bilateral_blur.frag),
+// horizontal then vertical, every source with the same weights:
+//   out = (w_0 v_0 + sum_k w_k g_d g_n g_p v_k) / (w_0 + sum_k w_k g_d g_n g_p)
+//   g_d = max(0, 1 - |d_k - d| / (t_d d)), g_n = max(n_k.n, 0)^p,
+//   g_p = max(0, 1 - |(P_k - P).n| / (t_p d)); sky (d = 0) passes through and
+// is never a tap.
+std::vector<Signal> cpu_blur(const Guide& guide, std::vector<Signal> sources,
+                             const spiral::codegen::BlurKernel& kernel,
+                             const BilateralBlurParameters& parameters = {}) {
+    const int w = guide.width;
+    const int h = guide.height;
+    std::vector<glm::vec3> normal(guide.normal.size());
+    for (std::size_t i = 0; i < normal.size(); ++i)
+        normal[i] = decode_stored_normal(guide.normal[i]);
+    auto position = [&](int x, int y) {
+        const float d = guide.at_depth(x, y);
+        const glm::vec2 ndc((float(x) + 0.5f) / float(w) * 2.0f - 1.0f,
+                            (float(y) + 0.5f) / float(h) * 2.0f - 1.0f);
+        return glm::vec3(ndc.x * 0.7f * d, ndc.y * 0.45f * d, -d);
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+        const int dx = pass == 0 ? 1 : 0;
+        const int dy = pass == 0 ? 0 : 1;
+        std::vector<Signal> next = sources;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t centre = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                const float depth = guide.depth[centre];
+                if (depth <= 0.0f) continue;
+                const glm::vec3 p = position(x, y);
+                const glm::vec3 n = normal[centre];
+                std::vector<std::pair<std::size_t, double>> taps{
+                    {centre, kernel.weights[std::size_t(kernel.radius)]}};
+                for (int k = -kernel.radius; k <= kernel.radius; ++k) {
+                    const int tx = x + k * dx;
+                    const int ty = y + k * dy;
+                    if (k == 0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+                    const std::size_t tap = std::size_t(ty) * std::size_t(w) + std::size_t(tx);
+                    const float tap_depth = guide.depth[tap];
+                    if (tap_depth <= 0.0f) continue;
+                    const double g_d =
+                        std::max(0.0, 1.0 - std::abs(double(tap_depth) - depth) /
+                                                (double(parameters.depth_tolerance) * depth));
+                    const double g_n = std::pow(std::max(double(glm::dot(normal[tap], n)), 0.0),
+                                                double(parameters.normal_power));
+                    const double g_p =
+                        std::max(0.0, 1.0 - std::abs(double(glm::dot(position(tx, ty) - p, n))) /
+                                                (double(parameters.plane_tolerance) * depth));
+                    taps.emplace_back(
+                        tap, kernel.weights[std::size_t(k + kernel.radius)] * g_d * g_n * g_p);
+                }
+                double total = 0.0;
+                for (const auto& [tap, weight] : taps) total += weight;
+                for (std::size_t s = 0; s < sources.size(); ++s) {
+                    const int c = sources[s].channels;
+                    for (int channel = 0; channel < c; ++channel) {
+                        double sum = 0.0;
+                        for (const auto& [tap, weight] : taps)
+                            sum += weight *
+                                   sources[s].values[tap * std::size_t(c) + std::size_t(channel)];
+                        next[s].values[centre * std::size_t(c) + std::size_t(channel)] =
+                            float(sum / total);
+                    }
+                }
+            }
+        }
+        sources = std::move(next);
+    }
+    return sources;
+}
+
+// The build's kernel (blur_kernel.glsl as CMake generated it).
+spiral::codegen::BlurKernel build_kernel() {
+    const std::string build_sigma = SAO_TEST_BLUR_SIGMA;
+    return spiral::codegen::gaussian_kernel(
+        SAO_TEST_BLUR_RADIUS,
+        build_sigma.empty() ? std::nullopt : std::optional(std::stod(build_sigma)));
 }
 
 std::vector<float> random_values(std::size_t count, unsigned seed) {
@@ -99,6 +223,20 @@ Guide patchwork(int width, int height) {
         if (tile % 11 == 3) return {0.0f, {0, 0, 1}};
         return {1.0f + float(tile % 5) * 0.7f,
                 {float(tile % 3) - 1.0f, float(tile % 4) * 0.3f - 0.4f, 1.0f}};
+    });
+}
+
+// Tiles as in patchwork, each a tilted plane with slightly wavy normals, so
+// that taps within a tile get depth, normal and plane weights strictly
+// between 0 and 1.
+Guide rough_patchwork(int width, int height) {
+    return make_guide(width, height, [](int x, int y) -> std::pair<float, glm::vec3> {
+        const int tile = (x / 9) * 31 + (y / 7) * 17;
+        if (tile % 11 == 3) return {0.0f, {0, 0, 1}};
+        const float depth = 1.0f + float(tile % 5) * 0.7f + 0.004f * float(x) - 0.003f * float(y);
+        return {depth,
+                {float(tile % 3) - 1.0f + 0.08f * std::sin(float(x)),
+                 float(tile % 4) * 0.3f - 0.4f + 0.08f * std::cos(float(y) * 1.3f), 1.0f}};
     });
 }
 
@@ -220,6 +358,67 @@ TEST_CASE("blur: sky passes through and never leaks into surfaces", "[blur]") {
         }
     }
     CHECK(sky > 100);
+}
+
+}  // namespace
+}  // namespace deepgi::test
+
+namespace deepgi::test {
+namespace {
+
+TEST_CASE("blur: on rough guides the blur equals a CPU evaluation of its formula", "[blur]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const Guide guide = rough_patchwork(61, 43);
+    const std::vector<Signal> input = {Signal{1, random_values(61 * 43, 3)}};
+    const std::vector<Signal> expected = cpu_blur(guide, input, build_kernel());
+    const std::vector<float> gpu = run_blur(loader, guide, input.front().values);
+    // Control: the blur changed the image, so agreement is not the identity.
+    CHECK(max_difference(expected.front().values, input.front().values) > 0.1f);
+    CHECK(max_difference(gpu, expected.front().values) <= 1e-4f);
+
+    // The same with the tolerances and power moved, through a 7-tap kernel.
+    TemporaryFolder headers;
+    write_blur_header(headers.path(), 3, 1.1);
+    BilateralBlurParameters loose;
+    loose.depth_tolerance = 0.3f;
+    loose.normal_power = 2.5f;
+    loose.plane_tolerance = 0.05f;
+    const std::vector<float> gpu_loose =
+        run_blur(loader_with_override(headers.path()), guide, input.front().values, loose);
+    CHECK(max_difference(gpu_loose,
+                         cpu_blur(guide, input, spiral::codegen::gaussian_kernel(3, 1.1), loose)
+                             .front()
+                             .values) <= 1e-4f);
+}
+
+TEST_CASE("blur: two sources blurred together get the weights each gets alone", "[blur]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const Guide guide = rough_patchwork(53, 37);
+    // AO-like one-channel source and radiosity-like RGBA source (E + confidence).
+    const Signal ao{1, random_values(53 * 37, 5)};
+    Signal radiosity{4, random_values(53 * 37 * 4, 9)};
+    for (float& value : radiosity.values) value *= 20.0f;
+    const std::vector<Signal> together = run_blur_sources(loader, guide, {ao, radiosity});
+    REQUIRE(together.size() == 2);
+    const std::vector<Signal> expected = cpu_blur(guide, {ao, radiosity}, build_kernel());
+    CHECK(max_difference(together[0].values, expected[0].values) <= 1e-4f);
+    CHECK(max_difference(together[1].values, expected[1].values) <= 20.0f * 1e-4f);
+    // Alone, each source gives the same result as in the pair.
+    CHECK(max_difference(run_blur_sources(loader, guide, {ao}).front().values,
+                         together[0].values) <= 1e-6f);
+    CHECK(max_difference(run_blur_sources(loader, guide, {radiosity}).front().values,
+                         together[1].values) <= 20.0f * 1e-6f);
+}
+
+TEST_CASE("blur: a blur of 0 or 3 sources, or with mismatched inputs, is refused", "[blur]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    CHECK_THROWS_AS(create_bilateral_blur(loader, 0), InputError);
+    CHECK_THROWS_AS(create_bilateral_blur(loader, 3), InputError);
+    BilateralBlur blur = create_bilateral_blur(loader, 2);
+    CHECK_THROWS_AS(resize_bilateral_blur(blur, 8, 8, GL_R16F), InputError);
 }
 
 }  // namespace

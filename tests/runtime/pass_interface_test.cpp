@@ -249,9 +249,9 @@ std::unique_ptr<Pass> make_copy_ao_pass(const ShaderLoader&, const Scene&) {
 TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][passes]") {
     HeadlessContext context;
     std::vector<PassFactory> passes = default_pass_list();
-    const auto ao_blur = std::find(passes.begin(), passes.end(), &make_ao_blur_pass);
-    REQUIRE(ao_blur != passes.end());
-    passes.insert(ao_blur + 1, make_copy_ao_pass);
+    const auto blur = std::find(passes.begin(), passes.end(), &make_blur_pass);
+    REQUIRE(blur != passes.end());
+    passes.insert(blur + 1, make_copy_ao_pass);
     const Scene scene = make_builtin_scene("cornell");
     Renderer renderer(scene, settings_at(96, 64), ShaderLoader::from_build_configuration(), passes);
     renderer.render(scene.default_camera);

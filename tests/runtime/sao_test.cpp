@@ -238,43 +238,66 @@ TEST_CASE("sao: compose adds albedo times E and the environment, times the blurr
           "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
-    const RenderSettings settings = small_settings(160, 90);
-    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
-    renderer.render(scene.default_camera);
-    const FloatImage composed = renderer.read_pass_output("compose-radiance");
-    const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
-    const FloatImage emissive = renderer.read_pass_output("gbuffer-emissive-layer0");
-    const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
-    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-    const FloatImage visibility = renderer.read_pass_output("ao-blurred");
-    const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
-    const FloatImage confidence = renderer.read_pass_output("radiosity-blurred-confidence");
-    const float pi = 3.14159265f;
-    int mismatches = 0;
-    int visibility_matters = 0;
-    int radiosity_matters = 0;
-    for (int y = 0; y < composed.height; ++y) {
-        for (int x = 0; x < composed.width; ++x) {
-            if (depth.at(x, y) <= 0.0f) continue;
-            const float c = std::clamp(confidence.at(x, y), 0.0f, 1.0f);
-            for (int k = 0; k < 3; ++k) {
-                // cornell has a black background: the environment is the
-                // constant ambient radiance, irradiance pi * ambient.
-                const float e = irradiance.at(x, y, k) + pi * scene.ambient[k] * (1.0f - c);
-                const float indirect = albedo.at(x, y, k) / pi * e;
-                const float expected =
-                    direct.at(x, y, k) + emissive.at(x, y, k) + indirect * visibility.at(x, y);
-                // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
-                mismatches += std::abs(composed.at(x, y, k) - expected) > 0.035f * expected + 1e-5f;
-                visibility_matters += indirect * (1.0f - visibility.at(x, y)) > 0.1f * expected;
-                radiosity_matters +=
-                    albedo.at(x, y, k) / pi * irradiance.at(x, y, k) > 0.1f * expected;
+    // Every combination of the three terms compose can leave out (the README's
+    // direct-only / + AO / + bounces images): a term switched off must be
+    // absent from the result, one switched on present.
+    for (int terms = 0; terms < 8; ++terms) {
+        const bool use_ao = (terms & 1) == 0;
+        const bool use_radiosity = (terms & 2) == 0;
+        const bool use_environment = (terms & 4) == 0;
+        RenderSettings settings = small_settings(160, 90);
+        settings.ao.enabled = use_ao;
+        settings.radiosity.enabled = use_radiosity;
+        settings.environment = use_environment;
+        Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+        renderer.render(scene.default_camera);
+        const FloatImage composed = renderer.read_pass_output("compose-radiance");
+        const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
+        const FloatImage emissive = renderer.read_pass_output("gbuffer-emissive-layer0");
+        const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
+        const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+        const FloatImage visibility = renderer.read_pass_output("ao-blurred");
+        const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
+        const FloatImage confidence = renderer.read_pass_output("radiosity-blurred-confidence");
+        const float pi = 3.14159265f;
+        int mismatches = 0;
+        int visibility_matters = 0;
+        int radiosity_matters = 0;
+        int environment_matters = 0;
+        for (int y = 0; y < composed.height; ++y) {
+            for (int x = 0; x < composed.width; ++x) {
+                if (depth.at(x, y) <= 0.0f) continue;
+                const float c = use_radiosity ? std::clamp(confidence.at(x, y), 0.0f, 1.0f) : 0.0f;
+                const float av = use_ao ? visibility.at(x, y) : 1.0f;
+                for (int k = 0; k < 3; ++k) {
+                    // cornell has a black background: the environment is the
+                    // constant ambient radiance, irradiance pi * ambient.
+                    const float gathered = use_radiosity ? irradiance.at(x, y, k) : 0.0f;
+                    const float environment =
+                        use_environment ? pi * scene.ambient[k] * (1.0f - c) : 0.0f;
+                    const float indirect = albedo.at(x, y, k) / pi * (gathered + environment);
+                    const float expected =
+                        direct.at(x, y, k) + emissive.at(x, y, k) + indirect * av;
+                    // R11G11B10F keeps 6 or 5 mantissa bits: about 3% relative.
+                    mismatches +=
+                        std::abs(composed.at(x, y, k) - expected) > 0.035f * expected + 1e-5f;
+                    visibility_matters += indirect * (1.0f - visibility.at(x, y)) > 0.1f * expected;
+                    radiosity_matters +=
+                        albedo.at(x, y, k) / pi * irradiance.at(x, y, k) > 0.1f * expected;
+                    environment_matters +=
+                        albedo.at(x, y, k) * scene.ambient[k] * av > 0.1f * expected;
+                }
             }
         }
+        INFO("AO " << use_ao << ", radiosity " << use_radiosity << ", environment "
+                   << use_environment);
+        CHECK(mismatches == 0);
+        // Pixels where the check fails if compose got the term's switch
+        // wrong (the passes run either way, so the unused terms are there).
+        if (use_radiosity || use_environment) CHECK(visibility_matters > 100);
+        CHECK(radiosity_matters > 100);
+        if (!use_radiosity) CHECK(environment_matters > 100);
     }
-    CHECK(mismatches == 0);
-    CHECK(visibility_matters > 100);  // pixels where leaving AV out would fail the check
-    CHECK(radiosity_matters > 100);   // and where leaving E out would
 }
 
 TEST_CASE("sao: the ao-raw and ao-blurred debug views show the visibility", "[compose]") {

@@ -128,6 +128,9 @@ struct AoSettings {
     // Temporal filter: weight of the history across whole rotation cycles
     // (0: the raw SAO result of each frame); see docs/radiosity.md.
     float alpha = 0.85f;
+    // false: compose takes the visibility as 1 (the passes still run, so the
+    // AO debug views keep working); for showing what AO adds.
+    bool enabled = true;
 };
 
 // Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
@@ -139,6 +142,9 @@ struct RadiositySettings {
     float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
     float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
     int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
+    // false: compose takes E and its confidence as 0, so the environment term
+    // fills everywhere (the passes still run for their debug views).
+    bool enabled = true;
 };
 
 struct RenderSettings {
@@ -148,6 +154,9 @@ struct RenderSettings {
     Generator generator = Generator::peel;
     float min_separation = 0.5f;  // camera-space metres between layer 0 and layer 1
     float exposure = 1.0f;
+    // false: compose adds no environment irradiance where the radiosity's
+    // confidence is low (with radiosity and AO off too: direct light only).
+    bool environment = true;
     DebugView view = DebugView::final_image;
     int shadow_map_size = 2048;
     TimingMode timing = TimingMode::automatic;

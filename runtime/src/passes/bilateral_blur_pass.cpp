@@ -1,9 +1,15 @@
 // Separable bilateral blur (design.md 3, step 5): a horizontal draw into an
-// intermediate texture, then a vertical draw into the output. The kernel is
-// the generated blur_kernel.glsl the shader loader finds.
+// intermediate texture per source, then a vertical draw into the outputs. The
+// kernel is the generated blur_kernel.glsl the shader loader finds.
+//
+// The frame's blur pass filters the AO visibility and layer 0's radiosity E
+// (with its confidence) in the same draws: both are keyed on the same depth
+// and normal, so each tap's weight is computed once for both.
 #include "deepgi/errors.hpp"
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
+
+#include <fmt/format.h>
 
 #include <cmath>
 
@@ -19,7 +25,21 @@ void check_parameters(const BilateralBlurParameters& parameters) {
     }
 }
 
-// Smooths the raw deep SAO visibility.
+gl::Framebuffer framebuffer_for_all(const gl::Texture* const* textures, int count,
+                                    const char* what) {
+    gl::Framebuffer framebuffer = gl::create_framebuffer();
+    GLenum buffers[max_blur_sources] = {};
+    for (int i = 0; i < count; ++i) {
+        buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+        glNamedFramebufferTexture(framebuffer.get(), buffers[i], textures[i]->get(), 0);
+    }
+    glNamedFramebufferDrawBuffers(framebuffer.get(), count, buffers);
+    gl::check_framebuffer(framebuffer, what);
+    return framebuffer;
+}
+
+// Smooths the raw deep SAO visibility alone (the default frame uses BlurPass
+// below; benchmarks run this and radiosity_blur to compare).
 class AoBlurPass final : public Pass {
 public:
     explicit AoBlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader)) {}
@@ -31,6 +51,7 @@ public:
                               GL_R16F);
         label_texture(blur_.horizontal, name(), "horizontal");
         label_texture(blur_.output, name(), "output");
+        label_texture(blur_.key, name(), "key");
     }
 
     void run(FrameResources& frame) override {
@@ -51,48 +72,147 @@ private:
     BilateralBlur blur_;
 };
 
+// Smooths the raw deep SAO visibility (R16F) and layer 0's filtered radiosity
+// E + confidence (RGBA16F) with one set of weights.
+class BlurPass final : public Pass {
+public:
+    explicit BlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader, 2)) {}
+
+    std::string_view name() const override { return "blur"; }
+
+    void resize(FrameResources& frame) override {
+        const GLenum formats[] = {GL_R16F, GL_RGBA16F};
+        resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,
+                              formats);
+        label_texture(blur_.horizontal, name(), "ao horizontal");
+        label_texture(blur_.output, name(), "ao output");
+        label_texture(blur_.second_horizontal, name(), "radiosity horizontal");
+        label_texture(blur_.second_output, name(), "radiosity output");
+        label_texture(blur_.key, name(), "key");
+    }
+
+    void run(FrameResources& frame) override {
+        const GLuint sources[] = {frame.texture("ao.temporal"),
+                                  frame.texture("radiosity.irradiance.layer0")};
+        run_bilateral_blur(blur_, sources, frame.texture("depth_pyramid"),
+                           frame.texture("gbuffer.normal"), frame.empty_vertex_array);
+        frame.publish("ao.blurred", blur_.output.get());
+        frame.publish("radiosity.blurred", blur_.second_output.get());
+    }
+
+    std::vector<PassOutput> outputs(const FrameResources&) const override {
+        return {{.name = "ao-blurred",
+                 .texture = blur_.output.get(),
+                 .width = blur_.width,
+                 .height = blur_.height,
+                 .channels = 1},
+                {.name = "radiosity-blurred",
+                 .texture = blur_.second_output.get(),
+                 .width = blur_.width,
+                 .height = blur_.height},
+                {.name = "radiosity-blurred-confidence",
+                 .texture = blur_.second_output.get(),
+                 .width = blur_.width,
+                 .height = blur_.height,
+                 .channels = 1,
+                 .decode = OutputDecode::alpha}};
+    }
+
+private:
+    BilateralBlur blur_;
+};
+
 }  // namespace
 
-BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
+BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count,
                                     const BilateralBlurParameters& parameters) {
     check_parameters(parameters);
+    if (source_count < 1 || source_count > max_blur_sources)
+        throw InputError(fmt::format("the bilateral blur filters 1 to {} sources, not {}",
+                                     max_blur_sources, source_count));
     BilateralBlur blur;
     blur.parameters = parameters;
-    blur.program = build_fullscreen_program(loader, "bilateral_blur.frag");
+    blur.source_count = source_count;
+    blur.key_program = build_fullscreen_program(loader, "bilateral_blur_key.frag");
+    blur.program = build_fullscreen_program(loader, "bilateral_blur.frag",
+                                            fmt::format("#define BLUR_SOURCES {}\n", source_count));
     return blur;
 }
 
-void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format) {
-    blur.width = width;
-    blur.height = height;
-    blur.horizontal = gl::create_texture_2d(internal_format, width, height);
-    blur.output = gl::create_texture_2d(internal_format, width, height);
-    blur.horizontal_framebuffer = framebuffer_for(blur.horizontal, "bilateral blur");
-    blur.output_framebuffer = framebuffer_for(blur.output, "bilateral blur");
+BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
+                                    const BilateralBlurParameters& parameters) {
+    return create_bilateral_blur(loader, 1, parameters);
 }
 
-void run_bilateral_blur(const BilateralBlur& blur, GLuint source, GLuint depth_pyramid,
-                        GLuint gbuffer_normal, GLuint empty_vertex_array) {
+void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
+                           std::span<const GLenum> internal_formats) {
+    if (int(internal_formats.size()) != blur.source_count)
+        throw InputError(fmt::format("the bilateral blur has {} sources but got {} formats",
+                                     blur.source_count, internal_formats.size()));
+    blur.width = width;
+    blur.height = height;
+    blur.key = gl::create_texture_2d(GL_RGBA32F, width, height);
+    blur.key_framebuffer = framebuffer_for(blur.key, "bilateral blur key");
+    gl::Texture* horizontal[max_blur_sources] = {&blur.horizontal, &blur.second_horizontal};
+    gl::Texture* output[max_blur_sources] = {&blur.output, &blur.second_output};
+    for (int i = 0; i < blur.source_count; ++i) {
+        *horizontal[i] = gl::create_texture_2d(internal_formats[std::size_t(i)], width, height);
+        *output[i] = gl::create_texture_2d(internal_formats[std::size_t(i)], width, height);
+    }
+    blur.horizontal_framebuffer =
+        framebuffer_for_all(horizontal, blur.source_count, "bilateral blur");
+    blur.output_framebuffer = framebuffer_for_all(output, blur.source_count, "bilateral blur");
+}
+
+void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format) {
+    resize_bilateral_blur(blur, width, height, std::span<const GLenum>(&internal_format, 1));
+}
+
+void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sources,
+                        GLuint depth_pyramid, GLuint gbuffer_normal, GLuint empty_vertex_array) {
+    if (int(sources.size()) != blur.source_count)
+        throw InputError(fmt::format("the bilateral blur has {} sources but got {} textures",
+                                     blur.source_count, sources.size()));
+    constexpr GLuint source_units[max_blur_sources] = {DEEPGI_UNIT_BLUR_SOURCE,
+                                                       DEEPGI_UNIT_BLUR_SECOND_SOURCE};
+    glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, depth_pyramid);
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, gbuffer_normal);
+    glUseProgram(blur.key_program.get());
+    begin_fullscreen(blur.key_framebuffer.get(), blur.width, blur.height);
+    draw_fullscreen_triangle(empty_vertex_array);
+
     const GLuint program = blur.program.get();
     glUseProgram(program);
     glProgramUniform4f(program, DEEPGI_UNIFORM_BLUR_PARAMETERS, blur.parameters.depth_tolerance,
                        blur.parameters.normal_power, blur.parameters.plane_tolerance, 0.0f);
-    glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, depth_pyramid);
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, gbuffer_normal);
+    glBindTextureUnit(DEEPGI_UNIT_BLUR_KEY, blur.key.get());
 
-    glBindTextureUnit(DEEPGI_UNIT_BLUR_SOURCE, source);
+    for (int i = 0; i < blur.source_count; ++i)
+        glBindTextureUnit(source_units[i], sources[std::size_t(i)]);
     glProgramUniform2i(program, DEEPGI_UNIFORM_BLUR_DIRECTION, 1, 0);
     begin_fullscreen(blur.horizontal_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
 
-    glBindTextureUnit(DEEPGI_UNIT_BLUR_SOURCE, blur.horizontal.get());
+    const GLuint horizontal[max_blur_sources] = {blur.horizontal.get(),
+                                                 blur.second_horizontal.get()};
+    for (int i = 0; i < blur.source_count; ++i) glBindTextureUnit(source_units[i], horizontal[i]);
     glProgramUniform2i(program, DEEPGI_UNIFORM_BLUR_DIRECTION, 0, 1);
     begin_fullscreen(blur.output_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
 }
 
+void run_bilateral_blur(const BilateralBlur& blur, GLuint source, GLuint depth_pyramid,
+                        GLuint gbuffer_normal, GLuint empty_vertex_array) {
+    run_bilateral_blur(blur, std::span<const GLuint>(&source, 1), depth_pyramid, gbuffer_normal,
+                       empty_vertex_array);
+}
+
 std::unique_ptr<Pass> make_ao_blur_pass(const ShaderLoader& loader, const Scene&) {
     return std::make_unique<AoBlurPass>(loader);
+}
+
+std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene&) {
+    return std::make_unique<BlurPass>(loader);
 }
 
 }  // namespace deepgi

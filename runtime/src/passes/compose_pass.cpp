@@ -32,6 +32,10 @@ public:
         glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY, frame.texture("radiosity.blurred"));
+        const RenderSettings& settings = *frame.settings;
+        glProgramUniform3i(program_.get(), DEEPGI_UNIFORM_COMPOSE_TERMS,
+                           settings.ao.enabled ? 1 : 0, settings.radiosity.enabled ? 1 : 0,
+                           settings.environment ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());

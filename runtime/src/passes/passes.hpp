@@ -4,6 +4,8 @@
 // the factories in the order the passes run.
 #include "pass.hpp"
 
+#include <span>
+
 namespace deepgi {
 
 std::unique_ptr<Pass> make_shadow_pass(const ShaderLoader& loader, const Scene& scene);
@@ -19,11 +21,14 @@ std::unique_ptr<Pass> make_ao_temporal_pass(const ShaderLoader& loader, const Sc
 std::unique_ptr<Pass> make_radiosity_prepare_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_blur_pass(const ShaderLoader& loader, const Scene& scene);
+// AO and layer 0's radiosity through one bilateral blur (replaces the two
+// passes above in the default list; they stay for comparison in benchmarks).
+std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_tonemap_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene& scene);
 
-// The separable bilateral blur as a reusable building block: the AO blur pass
+// The separable bilateral blur as a reusable building block: the blur pass
 // uses it, and so will any later pass that smooths a screen-space signal.
 // Tolerances are fractions of the centre pixel's depth.
 struct BilateralBlurParameters {
@@ -31,23 +36,39 @@ struct BilateralBlurParameters {
     float normal_power = 8.0f;      // weight * max(dot(n_tap, n_centre), 0)^power
     float plane_tolerance = 0.02f;  // distance from the centre's tangent plane that weighs nothing
 };
+// Sources one blur filters with the same weights (one render target each).
+inline constexpr int max_blur_sources = 2;
 struct BilateralBlur {
     gl::Program program;
-    gl::Texture horizontal;  // intermediate
-    gl::Texture output;      // the blurred result
-    gl::Framebuffer horizontal_framebuffer;
+    gl::Program key_program;  // writes `key` once, before both directions
+    int source_count = 1;
+    gl::Texture key;  // RGBA32F: layer-0 camera-space normal (xyz), linear depth (w)
+    gl::Framebuffer key_framebuffer;
+    gl::Texture horizontal;         // intermediate of the first source
+    gl::Texture output;             // the first source blurred
+    gl::Texture second_horizontal;  // the same for the second source, when there is one
+    gl::Texture second_output;
+    gl::Framebuffer horizontal_framebuffer;  // one colour attachment per source
     gl::Framebuffer output_framebuffer;
     int width = 0;
     int height = 0;
     BilateralBlurParameters parameters;
 };
-// Builds the program; throws InputError for bad parameters.
+// Builds the program for `source_count` (1 or 2) sources; throws InputError
+// for bad parameters.
+BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count,
+                                    const BilateralBlurParameters& parameters = {});
 BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
                                     const BilateralBlurParameters& parameters = {});
-// `internal_format` is what the source holds (GL_R16F for AO, an RGB format for
-// radiosity); the blur itself does not care.
+// One internal format per source: what the source holds (GL_R16F for AO,
+// GL_RGBA16F for radiosity); the blur itself does not care.
+void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
+                           std::span<const GLenum> internal_formats);
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format);
 // Keys: layer 0 of the depth pyramid (level 0, R) and of the G-buffer normal.
+// One source texture per source, in order.
+void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sources,
+                        GLuint depth_pyramid, GLuint gbuffer_normal, GLuint empty_vertex_array);
 void run_bilateral_blur(const BilateralBlur& blur, GLuint source, GLuint depth_pyramid,
                         GLuint gbuffer_normal, GLuint empty_vertex_array);
 

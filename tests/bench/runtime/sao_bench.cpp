@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
             const auto two = time_frames(renderer, scene.default_camera, warmup, frames);
             fmt::print("| {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", n, tau,
                        one.at("sao"), two.at("sao"), two.at("sao") / one.at("sao"),
-                       two.at("ao_blur"), two.at("depth_pyramid"));
+                       two.at("blur"), two.at("depth_pyramid"));
             std::fflush(stdout);
         }
         fmt::print("\n{} {}x{}, scene {}, {} ({}), median of {} frames after {} warm-up frames\n",

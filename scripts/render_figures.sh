@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Renders the README's "what each part adds" row for the cornell scene into
+# docs/figures/: direct light only; + deep SAO on the environment term;
+# + one bounce of deep radiosity (rho_prop 0); + multiple bounces
+# (rho_prop 1). Every image gets the same frames, so the temporal filter has
+# settled the same way in each. Run after scripts/build.sh:
+#   scripts/render_figures.sh [SIZE] [FRAMES]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+deepgi=${DEEPGI:-build/apps/deepgi/deepgi}
+size=${1:-480x270}
+frames=${2:-24}
+out=docs/figures
+mkdir -p "$out"
+render() {
+    local name=$1
+    shift
+    # deepgi writes the PNG atomically: a failed run leaves the old figure.
+    "$deepgi" --headless --scene cornell --size "$size" --frames "$frames" \
+        --output "$out/cornell-$name.png" "$@"
+    echo "wrote $out/cornell-$name.png"
+}
+render direct --no-ao --no-radiosity --no-environment
+render ao --no-radiosity
+render one-bounce --rho-prop 0
+render bounces --rho-prop 1
