@@ -406,9 +406,29 @@ def summary(directory, rows, info, discrepancy_series, images):
             parts.append(f"N = {n}: {PATTERN_LABELS.get(p, p)} ({fmt(e, 3)}; optimal tau "
                          f"{fmt(table.value('rad_conv_raw_rel_mae', 'optimal', n), 3)})")
         add("- **Radiosity** (relative MAE of layer-0 irradiance against its own converged gather, "
-            "same pattern as the AO): lowest per N: " + "; ".join(parts) + ". No ray-traced "
-            "irradiance yet, so no error against the truth.")
-    if all(r.get("ref_temporal_mae") is None for r in rows):
+            "same pattern as the AO): lowest per N: " + "; ".join(parts) + ".")
+        truth = [(n, table.value("rad_ref_rel_mae", "optimal", n),
+                  table.value("rad_ref_rel_bias", "optimal", n)) for n in study]
+        truth = [(n, e, b) for n, e, b in truth if e is not None and b is not None]
+        if truth:
+            add("- **Radiosity against the ray-traced one-bounce irradiance** (optimal tau, blurred "
+                "first frame after a cut, relative to the truth's mean): " +
+                "; ".join(f"N = {n}: MAE {fmt(e, 3)}, bias {b:+.3f}" for n, e, b in truth) +
+                ". A bias this size is the gather's, not the sampling's: it does not shrink "
+                "with N.")
+        else:
+            add("- **Radiosity against the truth:** the reference traced no irradiance, so "
+                "those columns are empty.")
+    temporal = [(table.value("ref_blur_mae", "optimal", n), table.value("ref_temporal_mae", "optimal", n))
+                for n in study] if study else []
+    temporal = [(a, b) for a, b in temporal if a is not None and b is not None]
+    if temporal:
+        add("- **Temporal accumulation** (optimal tau, MAE against the reference, mean over "
+            f"N = {', '.join(str(n) for n in study)}): after the blur of one frame "
+            f"{fmt(sum(a for a, _ in temporal) / len(temporal))}, after "
+            "the temporal filter's history (before the blur) "
+            f"{fmt(sum(b for _, b in temporal) / len(temporal))}.")
+    else:
         add("- **Temporal accumulation:** this build has no temporal AO output, so those columns are empty.")
 
     # 7. Against the paper.

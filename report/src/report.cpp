@@ -30,12 +30,11 @@ namespace {
 // columns from the last timed frame (warmup + frames frames of history).
 constexpr const char* kTemporalAoOutput = "ao-temporal";
 
-// The ray-traced one-bounce irradiance that the radiosity gather estimates.
-// The reference does not render it yet; once ReferenceImages carries it,
-// return it here (viewport layout as ambient_visibility) and the
-// rad_ref_rel_* columns fill in with no other change.
-std::optional<FloatImage> reference_irradiance(const ReferenceImages& /*images*/) {
-    return std::nullopt;
+// The ray-traced one-bounce irradiance that the radiosity gather estimates
+// (viewport layout as ambient_visibility); empty when it was not traced.
+std::optional<FloatImage> reference_irradiance(const ReferenceImages& images) {
+    if (images.irradiance.pixels.empty()) return std::nullopt;
+    return images.irradiance;
 }
 
 class ScratchFolder {
@@ -410,6 +409,15 @@ ReportResult run_report(const ReportOptions& options) {
         reference.rays.min_rays = options.rays;
         reference.rays.max_rays = options.rays;
         reference.rays.target_error = 0.0;
+        // One-bounce irradiance with the same fixed ray count, within the
+        // gather's radius: the rows compare the first frame after a cut, which
+        // has no bounce history, so one bounce is what it estimates.
+        reference.irradiance = true;
+        reference.radiosity_radius = settings.radiosity.radius;
+        reference.irradiance_rays.min_rays = options.rays;
+        reference.irradiance_rays.max_rays = options.rays;
+        reference.irradiance_rays.target_relative_error = 0.0;
+        reference.irradiance_rays.target_absolute_error = 0.0;
         reference.seed = options.seed;
         reference.threads = options.threads;
         const auto reference_start = std::chrono::steady_clock::now();
