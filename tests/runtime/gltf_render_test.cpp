@@ -353,6 +353,69 @@ TEST_CASE("gltf render: the alpha mask cuts holes in both G-buffer layers for ev
 
 namespace {
 
+// Scene "sieve": a white floor (z = 0, 12 m square) under a directional sun
+// travelling along (-1, 0, -1)/sqrt(2), so a caster at height 2 shadows the
+// floor 2 m towards -X. Three masked casters at z = 2, 2 m square, centred on
+// x = 4: at y = 0 a texture whose left half is a hole (alpha 0) and right
+// half solid; at y = 3 factor alpha 0.8 x vertex alpha 0.5 = 0.4, under the
+// cutoff 0.5 (all hole); at y = -3 factor alpha 1 x vertex alpha 0.6 (solid).
+std::string sieve_file() {
+    GltfBuilder b;
+    const int white = b.material("{}");
+    const int sampler = b.sampler(R"({"magFilter":9728,"minFilter":9728})");  // nearest
+    const int half = b.texture(png(2, 1, {255, 255, 255, 0, 255, 255, 255, 255}), sampler);
+    const int textured = b.material(fmt::format(
+        R"({{"alphaMode":"MASK","alphaCutoff":0.5,"pbrMetallicRoughness":{{"baseColorTexture":{{"index":{}}}}}}})",
+        half));
+    const int faint = b.material(
+        R"({"alphaMode":"MASK","alphaCutoff":0.5,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.8]}})");
+    const int plain = b.material(R"({"alphaMode":"MASK","alphaCutoff":0.5})");
+    auto vertex_alpha = [&](float a) {
+        std::vector<float> colours;
+        for (int i = 0; i < 4; ++i) colours.insert(colours.end(), {1, 1, 1, a});
+        return fmt::format(R"(,"COLOR_0":{})", b.accessor(colours, 5126, "VEC4", 4));
+    };
+    b.mesh_node(b.quad(0, 0, 0, 12.0f, white));
+    b.mesh_node(b.quad(4, 0, 2, 2.0f, textured));
+    b.mesh_node(b.quad(4, 3, 2, 2.0f, faint, 4, vertex_alpha(0.5f)));
+    b.mesh_node(b.quad(4, -3, 2, 2.0f, plain, 4, vertex_alpha(0.6f)));
+    b.light(R"({"type":"directional","intensity":2049})");  // 3 W/m^2
+    const float s = std::sin(glm::radians(22.5f)), c = std::cos(glm::radians(22.5f));
+    b.node(fmt::format(
+        R"("rotation":[0,{},0,{}],"extensions":{{"KHR_lights_punctual":{{"light":0}}}})", s, c));
+    b.use_extension("KHR_lights_punctual");
+    return b.json();
+}
+
+}  // namespace
+
+TEST_CASE("gltf render: alpha-masked casters let the light through their holes",
+          "[runtime][gltf][render]") {
+    HeadlessContext context;
+    const Scene scene = load(sieve_file());
+    Camera camera;
+    camera.position = {0, 0, 10};
+    camera.vertical_fov = 0.8f;
+    const Frame frame = render(scene, camera);
+    const Pinhole pinhole{camera.position, camera.vertical_fov};
+    // A caster point (x, y, 2) shades the floor at (x - 2, y, 0); seen from
+    // the camera, the floor points below are in front of every caster.
+    auto floor_light = [&](float x, float y) {
+        const glm::ivec2 p = pinhole.pixel({x, y, 0}, frame.layout);
+        CHECK(frame.depth0.at(p.x, p.y) == Approx(10.0f).epsilon(2e-3));
+        return frame.light0.at(p.x, p.y, 0);
+    };
+    // Sun at 45 degrees on a white floor: 3 W/m^2 x cos 45 / pi.
+    const float open = 3.0f * std::cos(glm::radians(45.0f)) / glm::pi<float>();
+    CHECK(floor_light(-3.0f, 0.0f) == Approx(open).epsilon(0.02));
+    CHECK(floor_light(1.5f, 0.0f) == Approx(open).epsilon(0.02));  // under the texture's hole
+    CHECK(floor_light(2.5f, 0.0f) < 0.02f * open);                 // under its solid half
+    CHECK(floor_light(2.0f, 3.0f) == Approx(open).epsilon(0.02));  // 0.8 x 0.5 < cutoff
+    CHECK(floor_light(2.0f, -3.0f) < 0.02f * open);                // 1 x 0.6 >= cutoff
+}
+
+namespace {
+
 // Scene "lights": two quads 1.5 m above and below the origin, the upper one
 // turned 45 degrees towards +X, the lower one towards -X, seen from
 // (0, 0, 10). `light` is a KHR_lights_punctual light placed at `x` with its

@@ -1,5 +1,6 @@
 // Depth from the key light, for the direct-light pass's PCF lookups.
 #include "passes/passes.hpp"
+#include "scene/scene_gpu.hpp"
 #include "shader_shared.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,7 +19,10 @@ glm::vec3 up_vector_for(glm::vec3 direction) {
 class ShadowPass final : public Pass {
 public:
     explicit ShadowPass(const ShaderLoader& loader)
-        : program_(loader.build_program({{GL_VERTEX_SHADER, "shadow.vert"}})) {}
+        : program_(loader.build_program({{GL_VERTEX_SHADER, "shadow.vert"}})),
+          masked_program_(loader.build_program(
+              {{GL_VERTEX_SHADER, "shadow.vert"}, {GL_FRAGMENT_SHADER, "shadow_mask.frag"}},
+              "#define ALPHA_MASK 1\n")) {}
 
     std::string_view name() const override { return "shadow"; }
 
@@ -51,10 +55,7 @@ public:
         glPolygonOffset(1.5f, 2.0f);
         const float far_depth = 1.0f;
         glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &far_depth);
-        glUseProgram(program_.get());
-        glProgramUniformMatrix4fv(program_.get(), DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION, 1, GL_FALSE,
-                                  &frame.shadow.light_view_projection[0][0]);
-        draw_scene(*frame.scene_gpu, 0);
+        draw_casters(*frame.scene_gpu, frame.shadow.light_view_projection);
         glDisable(GL_POLYGON_OFFSET_FILL);
         frame.publish("shadow.depth", depth_.get());
     }
@@ -69,7 +70,45 @@ public:
     }
 
 private:
+    // Opaque batches write depth only; alpha-masked ones go through the
+    // alpha test, which costs a fragment shader and a texture read, so only
+    // they pay for it.
+    void draw_casters(const SceneGpu& scene, const glm::mat4& light_view_projection) {
+        const GLuint programs[] = {program_.get(), masked_program_.get()};
+        for (GLuint program : programs)
+            glProgramUniformMatrix4fv(program, DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION, 1, GL_FALSE,
+                                      &light_view_projection[0][0]);
+        glBindVertexArray(scene.vertex_array.get());
+        glUseProgram(program_.get());
+        for (const auto& batch : scene.batches)
+            if (!is_masked(scene, batch)) draw_batch(batch);
+        const GLuint masked = masked_program_.get();
+        glUseProgram(masked);
+        for (const auto& batch : scene.batches) {
+            if (!is_masked(scene, batch)) continue;
+            const std::size_t m = std::size_t(batch.material);
+            const Material& material = scene.materials[m];
+            glProgramUniform4fv(masked, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
+                                &material.base_colour.x);
+            glProgramUniform1f(masked, DEEPGI_UNIFORM_ALPHA_CUTOFF, material.alpha_cutoff);
+            const bool textured = material.base_colour_texture >= 0;
+            glProgramUniform1i(masked, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE, textured ? 1 : 0);
+            if (textured) {
+                glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
+                                  scene.textures[std::size_t(material.base_colour_texture)].get());
+                glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
+            }
+            draw_batch(batch);
+        }
+        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
+    }
+
+    static bool is_masked(const SceneGpu& scene, const DrawBatch& batch) {
+        return scene.materials[std::size_t(batch.material)].alpha_cutoff >= 0.0f;
+    }
+
     gl::Program program_;
+    gl::Program masked_program_;
     gl::Texture depth_;  // DEPTH_COMPONENT32F, compare mode on for PCF
     gl::Framebuffer framebuffer_;
     int size_ = 0;
