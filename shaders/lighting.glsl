@@ -7,6 +7,8 @@ layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
 // 3x3 PCF with hardware 2x2 comparison filtering: soft enough to hide texels,
 // cheap enough for llvmpipe.
 float shadow_visibility(vec3 camera_position, vec3 camera_normal) {
+  // Point lights would need a cube map; until then they light unshadowed.
+  if (frame.light_kind == DEEPGI_LIGHT_POINT) return 1.0;
   vec3 offset_position = camera_position + camera_normal * frame.shadow_normal_offset;
   vec4 clip = frame.camera_to_light_clip * vec4(offset_position, 1.0);
   if (clip.w <= 0.0) return 0.0;
@@ -32,9 +34,18 @@ vec3 light_irradiance(vec3 camera_position, out vec3 to_light) {
   vec3 offset = frame.light_vector.xyz - camera_position;
   float distance_squared = max(dot(offset, offset), 1e-4);
   to_light = offset * inversesqrt(distance_squared);
-  float cos_angle = dot(-to_light, frame.spot_axis.xyz);
-  float cone = smoothstep(frame.spot_axis.w, frame.light_radiance.w, cos_angle);
-  return frame.light_radiance.rgb * cone / distance_squared;
+  float window = 1.0;
+  if (frame.light_vector.w > 0.0) {
+    // KHR_lights_punctual's range window: 1 - (d / range)^4, clamped.
+    float ratio_squared = distance_squared * frame.light_vector.w * frame.light_vector.w;
+    window = clamp(1.0 - ratio_squared * ratio_squared, 0.0, 1.0);
+  }
+  float cone = 1.0;
+  if (frame.light_kind == DEEPGI_LIGHT_SPOT) {
+    float cos_angle = dot(-to_light, frame.spot_axis.xyz);
+    cone = smoothstep(frame.spot_axis.w, frame.light_radiance.w, cos_angle);
+  }
+  return frame.light_radiance.rgb * (cone * window) / distance_squared;
 }
 
 vec3 lambertian_direct(vec3 camera_position, vec3 camera_normal, vec3 albedo) {

@@ -90,7 +90,8 @@ struct FrameConstants {
   mat4 previous_view_projection;
   mat4 camera_to_light_clip;  // camera space -> shadow map clip space
   vec4 camera_ray_scale;      // (1/P00, 1/P11, near plane, 0): position from linear depth
-  vec4 light_vector;          // camera space; directional: unit vector to the light; spot: position
+  vec4 light_vector;          // camera space; directional: unit vector to the light; spot, point:
+                              // position, w: 1 / range (0: unlimited)
   vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone
   vec4 light_radiance;        // rgb: colour * intensity; w: cos of the inner cone
   vec4 ambient;               // rgb: constant fill radiance factor (times albedo)

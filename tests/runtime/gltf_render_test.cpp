@@ -439,19 +439,21 @@ std::string lights_file(const std::string& light, float x) {
 
 }  // namespace
 
-TEST_CASE("gltf render: directional and spot lights brighten the side facing them",
+TEST_CASE("gltf render: directional, spot and point lights brighten the side facing them",
           "[runtime][gltf][render]") {
     HeadlessContext context;
     const std::string sun = R"({"type":"directional","intensity":2049})";  // 3 W/m^2
     const std::string spot =
         R"({"type":"spot","intensity":34150,"spot":{"innerConeAngle":0.4,"outerConeAngle":0.6}})";
-    for (const auto& [name, light] : {std::pair{"directional", sun}, std::pair{"spot", spot}}) {
-        INFO(name);
+    const std::string point = R"({"type":"point","intensity":34150})";
+    for (const auto& [kind, light] :
+         {std::pair{LightKind::directional, sun}, std::pair{LightKind::spot, spot},
+          std::pair{LightKind::point, point}}) {
+        INFO("light " << light);
         for (float x : {8.0f, -8.0f}) {
             INFO("light at x = " << x);
             const Scene scene = load(lights_file(light, x));
-            REQUIRE(scene.key_light.kind ==
-                    (std::string(name) == "spot" ? LightKind::spot : LightKind::directional));
+            REQUIRE(scene.key_light.kind == kind);
             Camera camera;
             camera.position = {0, 0, 10};
             camera.vertical_fov = 0.8f;
@@ -470,12 +472,56 @@ TEST_CASE("gltf render: directional and spot lights brighten the side facing the
     }
 }
 
-TEST_CASE("gltf render: a point light is named as dropped, the rest renders",
+TEST_CASE("gltf render: a point key light says once that it casts no shadow",
           "[runtime][gltf][render]") {
     const Scene scene = load(lights_file(R"({"type":"point","name":"bulb","intensity":100})", 8));
+    CHECK(scene.key_light.kind == LightKind::point);
     CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
-                     "dropped lights: 0 'bulb' (point)") == 1);
+                     "point light 0 'bulb' casts no shadow (point-light shadows are not "
+                     "implemented)") == 1);
+    for (const auto& warning : scene.warnings) CHECK(warning.find("dropped") == std::string::npos);
     CHECK(scene.indices.size() == 12);
+}
+
+TEST_CASE("gltf render: a point light is candela / 683 over distance squared, cut by its range",
+          "[runtime][gltf][render]") {
+    HeadlessContext context;
+    Camera camera;
+    camera.position = {0, 0, 10};
+    camera.vertical_fov = 0.8f;
+    const Pinhole pinhole{camera.position, camera.vertical_fov};
+    // The light sits 8 m from the upper quad's centre along +X; the quad's
+    // normal is 45 degrees from +X, its albedo white.
+    auto upper_radiance = [&](const std::string& extra) {
+        const Scene scene =
+            load(lights_file(R"({"type":"point","intensity":34150)" + extra + "}", 8));
+        const Frame frame = render(scene, camera);
+        const glm::ivec2 upper = pinhole.pixel({0, 1.5f, 0}, frame.layout);
+        // The pixel's surface point, from its depth along its view ray.
+        const float depth = frame.depth0.at(upper.x, upper.y);
+        const glm::vec2 ndc =
+            (glm::vec2(upper - frame.layout.guard) + 0.5f) / glm::vec2(kWidth, kHeight) * 2.0f -
+            1.0f;
+        const float t = std::tan(camera.vertical_fov / 2);
+        const glm::vec3 point =
+            camera.position + depth * glm::vec3(ndc.x * t * kWidth / kHeight, ndc.y * t, -1.0f);
+        return std::pair{frame.light0.at(upper.x, upper.y, 0), point};
+    };
+    const glm::vec3 light(8, 1.5f, 0);
+    const glm::vec3 normal(std::sin(glm::radians(45.0f)), 0, std::cos(glm::radians(45.0f)));
+    auto expected = [&](glm::vec3 point, float range) {
+        const glm::vec3 offset = light - point;
+        const float d2 = glm::dot(offset, offset);
+        const float window =
+            range > 0 ? std::clamp(1.0f - d2 * d2 / std::pow(range, 4.0f), 0.0f, 1.0f) : 1.0f;
+        return 50.0f / d2 * window * glm::dot(normal, offset / std::sqrt(d2)) / glm::pi<float>();
+    };
+    const auto [unlimited, point] = upper_radiance("");
+    CHECK(unlimited == Approx(expected(point, 0)).epsilon(0.02));
+    const auto [windowed, point16] = upper_radiance(R"(,"range":16)");
+    CHECK(windowed == Approx(expected(point16, 16)).epsilon(0.02));
+    CHECK(windowed < 0.97f * unlimited);                   // 1 - (8/16)^4 = 0.9375
+    CHECK(upper_radiance(R"(,"range":7)").first == 0.0f);  // out of range
 }
 
 TEST_CASE("gltf render: base colour textures are read through their sampler's wrap and filter",

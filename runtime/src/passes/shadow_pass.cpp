@@ -55,7 +55,9 @@ public:
         glPolygonOffset(1.5f, 2.0f);
         const float far_depth = 1.0f;
         glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &far_depth);
-        draw_casters(*frame.scene_gpu, frame.shadow.light_view_projection);
+        // A point light has no shadow map yet: the lighting ignores this one.
+        if (frame.scene->key_light.kind != LightKind::point)
+            draw_casters(*frame.scene_gpu, frame.shadow.light_view_projection);
         glDisable(GL_POLYGON_OFFSET_FILL);
         frame.publish("shadow.depth", depth_.get());
     }
@@ -122,6 +124,7 @@ ShadowProjection shadow_projection(const Scene& scene, int size) {
     const KeyLight& light = scene.key_light;
     const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
     const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
+    if (light.kind == LightKind::point) return result;  // unshadowed: identity, no offset
     const glm::vec3 direction = glm::normalize(light.direction);
     if (light.kind == LightKind::directional) {
         // An orthographic box around the scene's bounding sphere.
