@@ -38,6 +38,7 @@
 #define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
 #define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
 #define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
+#define DEEPGI_UNIT_SHADOW_CUBE 25         // point light: depth cube map, one perspective face per axis
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -92,7 +93,8 @@ struct FrameConstants {
   vec4 camera_ray_scale;      // (1/P00, 1/P11, near plane, 0): position from linear depth
   vec4 light_vector;          // camera space; directional: unit vector to the light; spot, point:
                               // position, w: 1 / range (0: unlimited)
-  vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone
+  vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone;
+                              // point: (near, far) of the shadow cube's faces
   vec4 light_radiance;        // rgb: colour * intensity; w: cos of the inner cone
   vec4 ambient;               // rgb: constant fill radiance factor (times albedo)
   vec4 background;            // rgb: radiance where nothing is hit

@@ -13,7 +13,7 @@
 
 #define DEEPGI_LIGHT_DIRECTIONAL 0
 #define DEEPGI_LIGHT_SPOT 1
-#define DEEPGI_LIGHT_POINT 2  // unshadowed: no cube shadow map yet
+#define DEEPGI_LIGHT_POINT 2
 
 #define DEEPGI_VIEW_FINAL 0
 #define DEEPGI_VIEW_NORMAL_LAYER0 1

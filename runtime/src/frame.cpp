@@ -168,6 +168,8 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     }
     constants.spot_axis = glm::vec4(glm::vec3(constants.view * glm::vec4(direction, 0.0f)),
                                     std::cos(light.outer_cone));
+    if (light.kind == LightKind::point)
+        constants.spot_axis = glm::vec4(shadow.cube_near, shadow.cube_far, 0.0f, 0.0f);
     constants.light_radiance =
         glm::vec4(light.colour * light.intensity, std::cos(light.inner_cone));
     constants.ambient = glm::vec4(state.scene.ambient, 0.0f);

@@ -764,9 +764,6 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                     fmt::format("light {}: range must be a finite number > 0", light_index));
             key.range = float(light.range);
         }
-        if (key.kind == LightKind::point)
-            scene.warnings.push_back(fmt::format(
-                "point light {} casts no shadow (point-light shadows are not implemented)", label));
         scene.key_light = key;
         have_key_light = true;
     };
