@@ -363,7 +363,7 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         KeyLight& light = state.light;
         ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"
-                                    : light.kind == LightKind::point ? "point (unshadowed)"
+                                    : light.kind == LightKind::point ? "point"
                                                                      : "directional");
         ImGui::SliderFloat("intensity", &light.intensity, 0.0f, 50.0f, "%.2f",
                            ImGuiSliderFlags_AlwaysClamp);
