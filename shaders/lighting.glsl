@@ -3,10 +3,29 @@
 const float PI = 3.14159265358979;
 
 layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
+layout(binding = DEEPGI_UNIT_SHADOW_CUBE) uniform samplerCubeShadow shadow_cube;
+
+// Point light: one lookup (2x2 comparison filtered) in the depth cube. The
+// face is the direction's major axis, and its stored depth is that face's
+// perspective depth of the major-axis distance.
+float point_shadow_visibility(vec3 camera_position, vec3 camera_normal) {
+  float distance = length(camera_position - frame.light_vector.xyz);
+  vec3 offset_position = camera_position + camera_normal * (frame.shadow_normal_offset * distance);
+  // The cube's faces are world aligned; the view matrix is rigid.
+  vec3 direction = transpose(mat3(frame.view)) * (offset_position - frame.light_vector.xyz);
+  float major = max(abs(direction.x), max(abs(direction.y), abs(direction.z)));
+  float near_plane = frame.spot_axis.x, far_plane = frame.spot_axis.y;
+  if (major >= far_plane) return 1.0;
+  float depth = far_plane / (far_plane - near_plane) -
+                far_plane * near_plane / ((far_plane - near_plane) * max(major, near_plane));
+  return texture(shadow_cube, vec4(direction, depth));
+}
 
 // 3x3 PCF with hardware 2x2 comparison filtering: soft enough to hide texels,
 // cheap enough for llvmpipe.
 float shadow_visibility(vec3 camera_position, vec3 camera_normal) {
+  if (frame.light_kind == DEEPGI_LIGHT_POINT)
+    return point_shadow_visibility(camera_position, camera_normal);
   vec3 offset_position = camera_position + camera_normal * frame.shadow_normal_offset;
   vec4 clip = frame.camera_to_light_clip * vec4(offset_position, 1.0);
   if (clip.w <= 0.0) return 0.0;
@@ -32,9 +51,18 @@ vec3 light_irradiance(vec3 camera_position, out vec3 to_light) {
   vec3 offset = frame.light_vector.xyz - camera_position;
   float distance_squared = max(dot(offset, offset), 1e-4);
   to_light = offset * inversesqrt(distance_squared);
-  float cos_angle = dot(-to_light, frame.spot_axis.xyz);
-  float cone = smoothstep(frame.spot_axis.w, frame.light_radiance.w, cos_angle);
-  return frame.light_radiance.rgb * cone / distance_squared;
+  float window = 1.0;
+  if (frame.light_vector.w > 0.0) {
+    // KHR_lights_punctual's range window: 1 - (d / range)^4, clamped.
+    float ratio_squared = distance_squared * frame.light_vector.w * frame.light_vector.w;
+    window = clamp(1.0 - ratio_squared * ratio_squared, 0.0, 1.0);
+  }
+  float cone = 1.0;
+  if (frame.light_kind == DEEPGI_LIGHT_SPOT) {
+    float cos_angle = dot(-to_light, frame.spot_axis.xyz);
+    cone = smoothstep(frame.spot_axis.w, frame.light_radiance.w, cos_angle);
+  }
+  return frame.light_radiance.rgb * (cone * window) / distance_squared;
 }
 
 vec3 lambertian_direct(vec3 camera_position, vec3 camera_normal, vec3 albedo) {

@@ -40,6 +40,7 @@
 #define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
 #define DEEPGI_UNIT_BLUR_SECOND_SOURCE 25  // the bilateral blur's second signal, same weights
 #define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
+#define DEEPGI_UNIT_SHADOW_CUBE 27         // point light: depth cube map, one perspective face per axis
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -93,8 +94,10 @@ struct FrameConstants {
   mat4 previous_view_projection;
   mat4 camera_to_light_clip;  // camera space -> shadow map clip space
   vec4 camera_ray_scale;      // (1/P00, 1/P11, near plane, 0): position from linear depth
-  vec4 light_vector;          // camera space; directional: unit vector to the light; spot: position
-  vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone
+  vec4 light_vector;          // camera space; directional: unit vector to the light; spot, point:
+                              // position, w: 1 / range (0: unlimited)
+  vec4 spot_axis;             // camera space spot direction; w: cos of the outer cone;
+                              // point: (near, far) of the shadow cube's faces
   vec4 light_radiance;        // rgb: colour * intensity; w: cos of the inner cone
   vec4 ambient;               // rgb: constant fill radiance factor (times albedo)
   vec4 background;            // rgb: radiance where nothing is hit

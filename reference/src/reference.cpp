@@ -126,6 +126,15 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
         const float distance_squared = std::max(glm::dot(offset, offset), 1e-4f);
         to_light = offset / std::sqrt(distance_squared);
         shadow_far = glm::length(offset);
+        // KHR_lights_punctual's range window, 1 - (d / range)^4, clamped.
+        float window = 1.0f;
+        if (light.range > 0.0f) {
+            const float ratio = distance_squared / (light.range * light.range);
+            window = std::clamp(1.0f - ratio * ratio, 0.0f, 1.0f);
+        }
+        incident *= window / distance_squared;
+    }
+    if (light.kind == LightKind::spot) {
         // smoothstep(cos outer, cos inner, cos angle), as in GLSL.
         const float edge0 = std::cos(light.outer_cone), edge1 = std::cos(light.inner_cone);
         const float cos_angle = glm::dot(-to_light, axis);
@@ -136,7 +145,7 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
         } else {
             cone = cos_angle >= edge0 ? 1.0f : 0.0f;
         }
-        incident *= cone / distance_squared;
+        incident *= cone;
     }
     const float cosine = glm::dot(surface.shading_normal, to_light);
     if (!(cosine > 0.0f) || incident == glm::vec3(0.0f)) return radiance;

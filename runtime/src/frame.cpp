@@ -161,10 +161,14 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
         constants.light_vector = glm::vec4(
             glm::normalize(glm::vec3(constants.view * glm::vec4(-direction, 0.0f))), 0.0f);
     } else {
-        constants.light_vector = constants.view * glm::vec4(light.position, 1.0f);
+        constants.light_vector =
+            glm::vec4(glm::vec3(constants.view * glm::vec4(light.position, 1.0f)),
+                      light.range > 0.0f ? 1.0f / light.range : 0.0f);
     }
     constants.spot_axis = glm::vec4(glm::vec3(constants.view * glm::vec4(direction, 0.0f)),
                                     std::cos(light.outer_cone));
+    if (light.kind == LightKind::point)
+        constants.spot_axis = glm::vec4(shadow.cube_near, shadow.cube_far, 0.0f, 0.0f);
     constants.light_radiance =
         glm::vec4(light.colour * light.intensity, std::cos(light.inner_cone));
     constants.ambient = glm::vec4(state.scene.ambient, 0.0f);
@@ -182,8 +186,9 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.viewport_width = settings.width;
     constants.viewport_height = settings.height;
     constants.generator = static_cast<int>(settings.generator);
-    constants.light_kind =
-        light.kind == LightKind::directional ? DEEPGI_LIGHT_DIRECTIONAL : DEEPGI_LIGHT_SPOT;
+    constants.light_kind = light.kind == LightKind::directional ? DEEPGI_LIGHT_DIRECTIONAL
+                           : light.kind == LightKind::spot      ? DEEPGI_LIGHT_SPOT
+                                                                : DEEPGI_LIGHT_POINT;
     constants.debug_view = static_cast<int>(settings.view);
     constants.temporal_phase = state.temporal_frame % DEEPGI_TEMPORAL_CYCLE;
     constants.temporal_angle = temporal_angle(constants.temporal_phase);
@@ -304,11 +309,12 @@ void Renderer::set_key_light(const KeyLight& light) {
     };
     if (!finite(light.position) || !finite(light.direction) || !finite(light.colour) ||
         !std::isfinite(light.intensity) || !std::isfinite(light.outer_cone) ||
-        !std::isfinite(light.inner_cone)) {
+        !std::isfinite(light.inner_cone) || !std::isfinite(light.range)) {
         throw InputError("light: every value must be finite");
     }
     if (light.intensity < 0.0f || glm::any(glm::lessThan(light.colour, glm::vec3(0.0f))))
         throw InputError("light: intensity and colour must be >= 0");
+    if (light.range < 0.0f) throw InputError("light: the range must be >= 0 (0: unlimited)");
     if (glm::length(light.direction) < 1e-6f)
         throw InputError("light: the direction must not be zero");
     RendererState& state = *state_;

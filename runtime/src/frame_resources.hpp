@@ -31,6 +31,11 @@ struct HistoryPair {
 struct ShadowProjection {
     glm::mat4 light_view_projection{1.0f};
     float normal_offset = 0.0f;  // metres along the normal before the lookup, against acne
+                                 // (point light: per metre of distance from the light)
+    // Point light: the light's position and the near and far planes of the
+    // six 90-degree faces of its shadow cube.
+    glm::vec3 cube_centre{0.0f};
+    float cube_near = 0.0f, cube_far = 0.0f;
     int size = 0;
 };
 

@@ -362,7 +362,9 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         numeric_sliders("radiosity", wanted);
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         KeyLight& light = state.light;
-        ImGui::Text("%s key light", light.kind == LightKind::spot ? "spot" : "directional");
+        ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"
+                                    : light.kind == LightKind::point ? "point"
+                                                                     : "directional");
         ImGui::SliderFloat("intensity", &light.intensity, 0.0f, 50.0f, "%.2f",
                            ImGuiSliderFlags_AlwaysClamp);
         ImGui::ColorEdit3("colour", &light.colour.x, ImGuiColorEditFlags_Float);
@@ -370,7 +372,7 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         turned |= ImGui::SliderAngle("pitch (below horizon)", &state.light_angles_edit.pitch,
                                      -90.0f, 90.0f);
         if (turned) light.direction = light_direction(state.light_angles_edit);
-        if (light.kind == LightKind::spot) {
+        if (light.kind != LightKind::directional) {
             const Bounds& bounds = state.scene.bounds;
             for (int axis = 0; axis < 3; ++axis) {
                 const char* labels[] = {"position x", "position y", "position z"};

@@ -221,7 +221,7 @@ void apply_set_command(const std::string& name, const std::vector<std::string>& 
         (name == "light-yaw" ? angles.yaw : angles.pitch) = radians;
         light.direction = light_direction(angles);
     } else if (name == "light-position") {
-        if (light.kind != LightKind::spot)
+        if (light.kind == LightKind::directional)
             throw InputError("light-position: the key light is directional (it has no position)");
         for (int i = 0; i < 3; ++i) light.position[i] = parse_float(name, values[std::size_t(i)]);
     } else {

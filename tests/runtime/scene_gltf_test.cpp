@@ -472,13 +472,13 @@ TEST_CASE("gltf loader: everything ignored is named in one summary line", "[runt
         REQUIRE(!contains(warning, "ignored"));
 }
 
-TEST_CASE("gltf loader: the first directional or spot light is the key light, the rest dropped",
+TEST_CASE("gltf loader: the first light met is the key light, the rest dropped",
           "[runtime][gltf]") {
-    // Node 1: point light 0 (unsupported). Node 2: spot light 1 at (0,4,0)
-    // turned -90 degrees about +X, so its -Z points down -Y. Node 3: sun 2.
+    // Visited first, node 2: spot light 1 at (0,4,0) turned -90 degrees about
+    // +X, so its -Z points down -Y. Then node 1: point light 0; node 3: sun 2.
     TriangleFile file;
     const double s = std::sqrt(0.5);
-    file.nodes = fmt::format(R"([{{"mesh":0,"children":[1,2,3]}},)"
+    file.nodes = fmt::format(R"([{{"mesh":0,"children":[2,1,3]}},)"
                              R"({{"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}},)"
                              R"({{"translation":[0,4,0],"rotation":[{0},0,0,{1}],)"
                              R"("extensions":{{"KHR_lights_punctual":{{"light":1}}}}}},)"
@@ -502,9 +502,38 @@ TEST_CASE("gltf loader: the first directional or spot light is the key light, th
     CHECK(key.inner_cone == 0.25f);
     CHECK(key.outer_cone == 0.5f);
     CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
-                     "dropped lights: 0 'bulb' (point), 2 'sun' (directional, one key light "
-                     "only)") == 1);
+                     "dropped lights: 0 'bulb' (point, one key light only), 2 'sun' "
+                     "(directional, one key light only)") == 1);
     for (const auto& warning : scene.warnings) CHECK(!contains(warning, "ignored"));
+}
+
+TEST_CASE("gltf loader: a point light first in the file is the key light, with its range",
+          "[runtime][gltf]") {
+    auto file_with = [](const std::string& light) {
+        TriangleFile file;
+        file.nodes = R"([{"mesh":0,"children":[1,2]},)"
+                     R"({"translation":[1,2,3],"extensions":{"KHR_lights_punctual":{"light":0}}},)"
+                     R"({"extensions":{"KHR_lights_punctual":{"light":1}}}])";
+        file.extra =
+            R"(,"extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[)" +
+            light + R"(,{"type":"area"}]}})";
+        return triangle_gltf(file);
+    };
+    const deepgi::Scene scene =
+        load(file_with(R"({"type":"point","name":"bulb","intensity":1366,"range":5})"));
+    const deepgi::KeyLight& key = scene.key_light;
+    CHECK(key.kind == deepgi::LightKind::point);
+    CHECK(key.position == glm::vec3(1, 2, 3));
+    CHECK(key.intensity == Approx(2.0f));  // 1366 cd / 683 lm/W
+    CHECK(key.range == 5.0f);
+    // The area light is dropped, and nothing else is said about lights.
+    CHECK(std::count(scene.warnings.begin(), scene.warnings.end(),
+                     "dropped lights: 1 (area: unknown type)") == 1);
+    for (const auto& warning : scene.warnings)
+        CHECK((warning.find("light") == std::string::npos || warning.starts_with("dropped")));
+    CHECK(load(file_with(R"({"type":"point"})")).key_light.range == 0.0f);
+    CHECK(contains(refusal(file_with(R"({"type":"point","range":-1})")),
+                   "light 0: range must be a finite number > 0"));
 }
 
 TEST_CASE("gltf loader: COLOR_0 is read as float or normalised integers, other forms refused",

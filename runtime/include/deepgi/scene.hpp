@@ -70,16 +70,21 @@ struct CameraPath {
     int frames_per_key = 24;
 };
 
-enum class LightKind { directional, spot };
+enum class LightKind { directional, spot, point };
 
 struct KeyLight {
     LightKind kind = LightKind::directional;
-    glm::vec3 position{0.0f};       // spot only
-    glm::vec3 direction{0, -1, 0};  // unit, the way the light travels
+    glm::vec3 position{0.0f};       // spot and point
+    glm::vec3 direction{0, -1, 0};  // unit, the way the light travels (directional, spot)
     glm::vec3 colour{1.0f};
-    float intensity = 3.0f;  // irradiance (directional) or W/sr-like intensity (spot)
+    // Irradiance in W/m^2 (directional) or radiant intensity in W/sr (spot,
+    // point; falling off with the inverse square of the distance).
+    float intensity = 3.0f;
     float outer_cone = glm::radians(60.0f);  // spot half angles
     float inner_cone = glm::radians(45.0f);
+    // Spot and point: the distance (m) where the light ends, reached smoothly
+    // by the window max(0, 1 - (d / range)^4) of KHR_lights_punctual; 0: unlimited.
+    float range = 0.0f;
 };
 
 // A perspective camera placed in a scene file, in file order of traversal.

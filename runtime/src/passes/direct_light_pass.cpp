@@ -35,6 +35,7 @@ public:
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
         glBindTextureUnit(DEEPGI_UNIT_SHADOW_MAP, frame.texture("shadow.depth"));
+        glBindTextureUnit(DEEPGI_UNIT_SHADOW_CUBE, frame.texture("shadow.cube"));
         glUseProgram(program_.get());
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(layer_framebuffers_[layer].get(), width_, height_);

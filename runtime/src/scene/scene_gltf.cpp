@@ -713,9 +713,9 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         scene.file_cameras.push_back(file_camera);
     };
 
-    // KHR_lights_punctual: the renderer has one shadowed key light, directional
-    // or spot. The first such light met walking the nodes is it; every other
-    // placement (point lights, further lights) is named as dropped. The
+    // KHR_lights_punctual: the renderer has one key light, directional, spot
+    // or point. The first light met walking the nodes is it; every further
+    // placement is named as dropped. The
     // extension's photometric units (lux, candela) become the renderer's
     // radiometric ones through 683 lm/W, the luminous efficacy the
     // extension's units are defined against.
@@ -725,8 +725,8 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
         const auto& light = model.lights[std::size_t(light_index)];
         const std::string label = fmt::format(
             "{}{}", light_index, light.name.empty() ? "" : fmt::format(" '{}'", light.name));
-        if (light.type != "directional" && light.type != "spot") {
-            dropped_lights.push_back(fmt::format("{} ({})", label, light.type));
+        if (light.type != "directional" && light.type != "spot" && light.type != "point") {
+            dropped_lights.push_back(fmt::format("{} ({}: unknown type)", label, light.type));
             return;
         }
         if (have_key_light) {
@@ -741,7 +741,9 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             reader.fail(
                 fmt::format("light {}: intensity must be a finite number >= 0", light_index));
         KeyLight key;
-        key.kind = light.type == "spot" ? LightKind::spot : LightKind::directional;
+        key.kind = light.type == "spot"    ? LightKind::spot
+                   : light.type == "point" ? LightKind::point
+                                           : LightKind::directional;
         key.direction = direction / length;
         key.position = glm::vec3(transform * glm::vec4(0, 0, 0, 1));
         key.colour = light.color.size() == 3
@@ -755,6 +757,12 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
                     "light {}: spot cone angles need 0 <= inner < outer <= pi/2", light_index));
             key.inner_cone = float(inner);
             key.outer_cone = float(outer);
+        }
+        if (key.kind != LightKind::directional && light.range != 0.0) {
+            if (!(light.range > 0.0) || !std::isfinite(light.range))
+                reader.fail(
+                    fmt::format("light {}: range must be a finite number > 0", light_index));
+            key.range = float(light.range);
         }
         scene.key_light = key;
         have_key_light = true;

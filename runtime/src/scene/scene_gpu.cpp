@@ -64,6 +64,12 @@ SceneGpu upload_scene(const Scene& scene) {
     return gpu;
 }
 
+void draw_batch(const DrawBatch& batch) {
+    glDrawElements(
+        GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) * sizeof(std::uint32_t)));
+}
+
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
     glBindVertexArray(scene.vertex_array.get());
     for (const auto& batch : scene.batches) {
@@ -93,9 +99,7 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
             glProgramUniform1f(program_for_materials, DEEPGI_UNIFORM_ALPHA_CUTOFF,
                                material.alpha_cutoff);
         }
-        glDrawElements(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) *
-                                                     sizeof(std::uint32_t)));
+        draw_batch(batch);
     }
     // Other passes read their textures with the textures' own parameters.
     if (program_for_materials != 0) {

@@ -22,4 +22,7 @@ SceneGpu upload_scene(const Scene& scene);
 // Draws every batch; `per_material` sets material uniforms first when non-null.
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials);
 
+// Draws one batch's triangles; the caller binds the vertex array and sets uniforms.
+void draw_batch(const DrawBatch& batch);
+
 }  // namespace deepgi
