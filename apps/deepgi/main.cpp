@@ -54,6 +54,7 @@ struct Options {
     bool no_environment = false;
     deepgi::AoSettings ao;
     deepgi::RadiositySettings radiosity;
+    deepgi::BlurSettings blur;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
     std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
@@ -103,6 +104,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.guard_band_fraction = options.guard_band;
     settings.ao = options.ao;
     settings.radiosity = options.radiosity;
+    settings.blur = options.blur;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
     settings.gl_debug = options.gl_debug;
@@ -291,6 +293,17 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--radiosity-alpha", options.radiosity.alpha,
                    "Deep radiosity: temporal filter's history weight in [0, 1) (0: raw gather)")
+        ->capture_default_str();
+    // The bilateral blur shared by AO and radiosity (docs/deep-sao.md).
+    app.add_option("--blur-depth-tolerance", options.blur.depth_tolerance,
+                   "Blur: relative depth difference at which a tap weighs nothing")
+        ->capture_default_str();
+    app.add_option("--blur-normal-power", options.blur.normal_power,
+                   "Blur: exponent on the normal agreement max(dot(n_tap, n_centre), 0)")
+        ->capture_default_str();
+    app.add_option("--blur-plane-tolerance", options.blur.plane_tolerance,
+                   "Blur: distance (m) from the centre's tangent plane at which a tap weighs "
+                   "nothing")
         ->capture_default_str();
     app.add_option("--radiosity-layers", options.radiosity.layers,
                    fmt::format("Deep radiosity: G-buffer layers gathered, 1 to {}",

@@ -360,6 +360,8 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
     }
     if (ImGui::CollapsingHeader("radiosity and temporal filter", ImGuiTreeNodeFlags_DefaultOpen))
         numeric_sliders("radiosity", wanted);
+    if (ImGui::CollapsingHeader("bilateral blur (AO and radiosity)"))
+        numeric_sliders("blur", wanted);
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         KeyLight& light = state.light;
         ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"

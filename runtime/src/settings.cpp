@@ -155,6 +155,13 @@ void validate(const RenderSettings& settings) {
         throw InputError("--ao-alpha must be a number in [0, 1)");
     if (!std::isfinite(radiosity.alpha) || radiosity.alpha < 0.0f || radiosity.alpha >= 1.0f)
         throw InputError("--radiosity-alpha must be a number in [0, 1)");
+    const BlurSettings& blur = settings.blur;
+    if (!finite_positive(blur.depth_tolerance))
+        throw InputError("--blur-depth-tolerance must be a finite number > 0");
+    if (!finite_positive(blur.normal_power))
+        throw InputError("--blur-normal-power must be a finite number > 0");
+    if (!finite_positive(blur.plane_tolerance))
+        throw InputError("--blur-plane-tolerance must be a finite number > 0");
     if (!unit_interval(radiosity.rho_prop))
         throw InputError("--rho-prop must be a number in [0, 1]");
     if (radiosity.layers < 1 || radiosity.layers > limits::max_radiosity_layers) {
@@ -175,7 +182,7 @@ namespace {
 
 // Slider ranges sit inside validate()'s limits; where validate() has no upper
 // limit the slider stops at what is still useful in the built-in scenes.
-const std::array<NumericSetting, 17> numeric_table = {{
+const std::array<NumericSetting, 20> numeric_table = {{
     {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
      DEEPGI_FLOAT_FIELD(min_separation)},
     {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
@@ -205,6 +212,12 @@ const std::array<NumericSetting, 17> numeric_table = {{
      DEEPGI_FLOAT_FIELD(radiosity.alpha)},
     {"radiosity-layers", "layers", "radiosity", true, 1.0f, float(limits::max_radiosity_layers),
      false, DEEPGI_INT_FIELD(radiosity.layers)},
+    {"blur-depth-tolerance", "depth tolerance", "blur", false, 0.005f, 1.0f, true,
+     DEEPGI_FLOAT_FIELD(blur.depth_tolerance)},
+    {"blur-normal-power", "normal power", "blur", false, 0.5f, 64.0f, true,
+     DEEPGI_FLOAT_FIELD(blur.normal_power)},
+    {"blur-plane-tolerance", "plane tolerance (m)", "blur", false, 0.001f, 1.0f, true,
+     DEEPGI_FLOAT_FIELD(blur.plane_tolerance)},
 }};
 
 #undef DEEPGI_FLOAT_FIELD

@@ -147,6 +147,14 @@ struct RadiositySettings {
     bool enabled = true;
 };
 
+// The bilateral blur's edge weights (docs/deep-sao.md, "bilateral blur"); its
+// radius and Gaussian weights are generated at build time (BLUR_RADIUS).
+struct BlurSettings {
+    float depth_tolerance = 0.1f;   // taps whose depth differs by this fraction weigh nothing
+    float normal_power = 8.0f;      // weight * max(dot(n_tap, n_centre), 0)^power
+    float plane_tolerance = 0.02f;  // distance from the centre's tangent plane that weighs nothing
+};
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
@@ -165,6 +173,7 @@ struct RenderSettings {
     bool gl_debug = false;
     AoSettings ao;
     RadiositySettings radiosity;
+    BlurSettings blur;  // one blur filters AO and radiosity E with the same weights
 };
 
 // Every check of every setting, enum values included; throws InputError with

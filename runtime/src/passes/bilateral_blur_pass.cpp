@@ -92,6 +92,8 @@ public:
     }
 
     void run(FrameResources& frame) override {
+        // Read every frame, so the window's sliders take effect without a rebuild.
+        blur_.parameters = frame.settings->blur;
         const GLuint sources[] = {frame.texture("ao.temporal"),
                                   frame.texture("radiosity.irradiance.layer0")};
         run_bilateral_blur(blur_, sources, frame.texture("depth_pyramid"),

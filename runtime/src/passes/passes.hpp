@@ -31,11 +31,8 @@ std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Sce
 // The separable bilateral blur as a reusable building block: the blur pass
 // uses it, and so will any later pass that smooths a screen-space signal.
 // Tolerances are fractions of the centre pixel's depth.
-struct BilateralBlurParameters {
-    float depth_tolerance = 0.1f;   // taps whose depth differs by this fraction weigh nothing
-    float normal_power = 8.0f;      // weight * max(dot(n_tap, n_centre), 0)^power
-    float plane_tolerance = 0.02f;  // distance from the centre's tangent plane that weighs nothing
-};
+// The edge weights are the settings' (one owner for their defaults).
+using BilateralBlurParameters = BlurSettings;
 // Sources one blur filters with the same weights (one render target each).
 inline constexpr int max_blur_sources = 2;
 struct BilateralBlur {
