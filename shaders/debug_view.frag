@@ -13,6 +13,8 @@ layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth
 layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
 layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D ao_raw;
 layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ao_blurred;
+layout(binding = DEEPGI_UNIT_AO_TEMPORAL) uniform sampler2D ao_temporal;
+layout(binding = DEEPGI_UNIT_RADIOSITY_RADIANCE) uniform sampler2DArray prepared_radiance;
 layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity_blurred;
 layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER0) uniform sampler2D radiosity_layer0;
 layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER1) uniform sampler2D radiosity_layer1;
@@ -29,6 +31,9 @@ vec3 view_colour(ivec2 pixel, int view) {
   // Visibility is shown as it is (1 = unoccluded white), not tonemapped.
   if (view == DEEPGI_VIEW_AO_RAW) return vec3(texelFetch(ao_raw, pixel, 0).r);
   if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(texelFetch(ao_blurred, pixel, 0).r);
+  if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(texelFetch(ao_temporal, pixel, 0).r);
+  if (view == DEEPGI_VIEW_RADIOSITY_PREPARED)
+    return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * frame.exposure);
   // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER0)
     return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (frame.exposure * 0.31830989));

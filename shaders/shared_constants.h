@@ -41,6 +41,7 @@
 #define DEEPGI_UNIT_BLUR_SECOND_SOURCE 25  // the bilateral blur's second signal, same weights
 #define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
 #define DEEPGI_UNIT_SHADOW_CUBE 27         // point light: depth cube map, one perspective face per axis
+#define DEEPGI_UNIT_AO_TEMPORAL 28         // temporally filtered visibility (debug view)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0

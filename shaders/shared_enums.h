@@ -38,5 +38,9 @@
 #define DEEPGI_VIEW_RADIOSITY_LAYER1 14
 #define DEEPGI_VIEW_RADIOSITY_BLURRED 15
 #define DEEPGI_VIEW_RADIOSITY_CONFIDENCE 16
+// The temporally filtered visibility (before the blur), and the prepare pass's
+// outgoing radiance B of layer 0 at its finest level (tonemapped).
+#define DEEPGI_VIEW_AO_TEMPORAL 17
+#define DEEPGI_VIEW_RADIOSITY_PREPARED 18
 
 #endif

@@ -18,7 +18,7 @@ constexpr std::array<EnumName<Generator>, 3> generator_table = {{
     {Generator::reproject, "reproject"},
 }};
 
-constexpr std::array<EnumName<DebugView>, 17> view_table = {{
+constexpr std::array<EnumName<DebugView>, 19> view_table = {{
     {DebugView::final_image, "final"},
     {DebugView::normal_layer0, "normal-layer0"},
     {DebugView::normal_layer1, "normal-layer1"},
@@ -31,7 +31,9 @@ constexpr std::array<EnumName<DebugView>, 17> view_table = {{
     {DebugView::direct_layer0, "direct-layer0"},
     {DebugView::direct_layer1, "direct-layer1"},
     {DebugView::ao_raw, "ao-raw"},
+    {DebugView::ao_temporal, "ao-temporal"},
     {DebugView::ao_blurred, "ao-blurred"},
+    {DebugView::radiosity_prepared, "radiosity-prepared"},
     {DebugView::radiosity_layer0, "radiosity-layer0"},
     {DebugView::radiosity_layer1, "radiosity-layer1"},
     {DebugView::radiosity_blurred, "radiosity-blurred"},

@@ -300,11 +300,13 @@ TEST_CASE("sao: compose adds albedo times E and the environment, times the blurr
     }
 }
 
-TEST_CASE("sao: the ao-raw and ao-blurred debug views show the visibility", "[compose]") {
+TEST_CASE("sao: the ao-raw, ao-temporal and ao-blurred debug views show the visibility",
+          "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     for (auto [view, source] :
-         {std::pair{DebugView::ao_raw, "ao-raw"}, std::pair{DebugView::ao_blurred, "ao-blurred"}}) {
+         {std::pair{DebugView::ao_raw, "ao-raw"}, std::pair{DebugView::ao_temporal, "ao-temporal"},
+          std::pair{DebugView::ao_blurred, "ao-blurred"}}) {
         RenderSettings settings = small_settings(160, 90);
         settings.view = view;
         Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());

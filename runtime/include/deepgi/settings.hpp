@@ -31,11 +31,13 @@ enum class DebugView {
     depth_layer1 = DEEPGI_VIEW_DEPTH_LAYER1,
     direct_layer0 = DEEPGI_VIEW_DIRECT_LAYER0,
     direct_layer1 = DEEPGI_VIEW_DIRECT_LAYER1,
-    ao_raw = DEEPGI_VIEW_AO_RAW,          // deep SAO visibility before the bilateral blur
-    ao_blurred = DEEPGI_VIEW_AO_BLURRED,  // after it: what the compose pass multiplies in
-    radiosity_layer0 = DEEPGI_VIEW_RADIOSITY_LAYER0,    // gathered E of layer 0, tonemapped
-    radiosity_layer1 = DEEPGI_VIEW_RADIOSITY_LAYER1,    // gathered E of layer 1, tonemapped
-    radiosity_blurred = DEEPGI_VIEW_RADIOSITY_BLURRED,  // layer 0's E after the bilateral blur
+    ao_raw = DEEPGI_VIEW_AO_RAW,            // deep SAO visibility before the bilateral blur
+    ao_temporal = DEEPGI_VIEW_AO_TEMPORAL,  // after the temporal filter, before the blur
+    ao_blurred = DEEPGI_VIEW_AO_BLURRED,    // after it: what the compose pass multiplies in
+    radiosity_prepared = DEEPGI_VIEW_RADIOSITY_PREPARED,  // B of layer 0 that the gather reads
+    radiosity_layer0 = DEEPGI_VIEW_RADIOSITY_LAYER0,      // gathered E of layer 0, tonemapped
+    radiosity_layer1 = DEEPGI_VIEW_RADIOSITY_LAYER1,      // gathered E of layer 1, tonemapped
+    radiosity_blurred = DEEPGI_VIEW_RADIOSITY_BLURRED,    // layer 0's E after the bilateral blur
     radiosity_confidence = DEEPGI_VIEW_RADIOSITY_CONFIDENCE,  // fraction of taps used
 };
 

@@ -29,6 +29,9 @@ public:
         glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
         glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
         glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
+        glBindTextureUnit(DEEPGI_UNIT_AO_TEMPORAL, frame.texture("ao.temporal"));
+        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RADIANCE,
+                          frame.texture("radiosity_prepare.radiance"));
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY, frame.texture("radiosity.blurred"));
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0,
                           frame.texture("radiosity.irradiance.layer0"));
