@@ -7,6 +7,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/image_io.hpp"
 #include "deepgi/window_controls.hpp"
+#include "command_line.hpp"
 #include "reference_command.hpp"
 #include "report_command.hpp"
 
@@ -25,10 +26,10 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using deepgi_app::parse_command_line;
+using deepgi_app::run_reporting_errors;
 
 namespace {
-
-constexpr int exit_bad_input = 2;
 
 struct Options {
     bool headless = false;
@@ -310,20 +311,10 @@ int main(int argc, char** argv) {
                                deepgi::limits::max_radiosity_layers))
         ->capture_default_str();
 
-    try {
-        app.parse(argc, argv);
-        options.ao_bias_given = ao_bias->count() > 0;
-    } catch (const CLI::CallForHelp&) {
-        fmt::print("{}", app.help());
-        return 0;
-    } catch (const CLI::ParseError& error) {
-        std::string message = error.what();
-        std::replace(message.begin(), message.end(), '\n', ' ');
-        fmt::print(stderr, "deepgi: error: {}\n", message);
-        return exit_bad_input;
-    }
+    if (const auto status = parse_command_line(app, argc, argv, "deepgi")) return *status;
+    options.ao_bias_given = ao_bias->count() > 0;
 
-    try {
+    return run_reporting_errors("deepgi", [&] {
         const deepgi::RenderSettings settings = settings_from(options);
         deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) {
@@ -351,14 +342,5 @@ int main(int argc, char** argv) {
         window.script = options.script;
         window.screenshot_directory = options.screenshot_directory;
         return deepgi::run_interactive(window, settings);
-    } catch (const deepgi::InputError& error) {
-        fmt::print(stderr, "deepgi: error: {}\n", error.what());
-        return exit_bad_input;
-    } catch (const spiral::fileio::WriteError& error) {  // output path or full disk
-        fmt::print(stderr, "deepgi: error: {}\n", error.what());
-        return exit_bad_input;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "deepgi: error: {}\n", error.what());
-        return 1;
-    }
+    });
 }

@@ -4,6 +4,7 @@
 // --dump`, and writes it as PFM images (docs/reference.md).
 #include "reference_command.hpp"
 
+#include "command_line.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/reference.hpp"
 
@@ -22,8 +23,6 @@ namespace fs = std::filesystem;
 
 namespace deepgi_app {
 namespace {
-
-constexpr int exit_bad_input = 2;
 
 struct ReferenceOptions {
     std::string scene = "cornell";
@@ -208,26 +207,9 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--irradiance-target-error", options.irradiance_target_error,
                    "Stop adding irradiance rays once every channel's standard error is below "
                    "this fraction of E (or 0.002)");
-    try {
-        app.parse(argc - 1, argv + 1);
-    } catch (const CLI::CallForHelp&) {
-        fmt::print("{}", app.help());
-        return 0;
-    } catch (const CLI::ParseError& error) {
-        std::string message = error.what();
-        std::replace(message.begin(), message.end(), '\n', ' ');
-        fmt::print(stderr, "deepgi reference: error: {}\n", message);
-        return exit_bad_input;
-    }
-    try {
-        return run(options);
-    } catch (const deepgi::InputError& error) {
-        fmt::print(stderr, "deepgi reference: error: {}\n", error.what());
-        return exit_bad_input;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "deepgi reference: error: {}\n", error.what());
-        return 1;
-    }
+    if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi reference"))
+        return *status;
+    return run_reporting_errors("deepgi reference", [&] { return run(options); });
 }
 
 }  // namespace deepgi_app

@@ -4,6 +4,7 @@
 #include "report_command.hpp"
 
 #include "deepgi/context.hpp"
+#include "command_line.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/report.hpp"
 
@@ -20,8 +21,6 @@
 
 namespace deepgi_app {
 namespace {
-
-constexpr int exit_bad_input = 2;
 
 struct CommandOptions {
     deepgi::report::ReportOptions report;
@@ -107,26 +106,9 @@ int run_report_command(int argc, char** argv) {
     app.add_flag("!--no-plots", options.plots, "Skip the matplotlib figures and summary.md");
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
     app.add_option("--plot-script", options.plot_script, "scripts/plot_report.py");
-    try {
-        app.parse(argc - 1, argv + 1);
-    } catch (const CLI::CallForHelp&) {
-        fmt::print("{}", app.help());
-        return 0;
-    } catch (const CLI::ParseError& error) {
-        std::string message = error.what();
-        std::replace(message.begin(), message.end(), '\n', ' ');
-        fmt::print(stderr, "deepgi report: error: {}\n", message);
-        return exit_bad_input;
-    }
-    try {
-        return run(options);
-    } catch (const deepgi::InputError& error) {
-        fmt::print(stderr, "deepgi report: error: {}\n", error.what());
-        return exit_bad_input;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "deepgi report: error: {}\n", error.what());
-        return 1;
-    }
+    if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
+        return *status;
+    return run_reporting_errors("deepgi report", [&] { return run(options); });
 }
 
 }  // namespace deepgi_app

@@ -1,0 +1,24 @@
+#pragma once
+// What every deepgi command (the renderer, `reference`, `report`) does with a
+// command line it cannot parse and with the errors its work throws: one line
+// on stderr that starts with the command's name, exit status 2 for bad input
+// and 1 for anything else.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <optional>
+#include <string_view>
+
+namespace deepgi_app {
+
+inline constexpr int exit_bad_input = 2;
+
+// Parses the command line. Returns the exit status when the command should
+// stop here: 0 after printing --help, exit_bad_input after a parse error.
+std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const* argv,
+                                      std::string_view command);
+
+// Runs the command's work; InputError and output-file errors are bad input.
+int run_reporting_errors(std::string_view command, const std::function<int()>& work);
+
+}  // namespace deepgi_app
