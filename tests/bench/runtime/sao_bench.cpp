@@ -95,8 +95,8 @@ int main(int argc, char** argv) {
             renderer.set_settings(settings);
             const auto two = time_frames(renderer, scene.default_camera, warmup, frames);
             fmt::print("| {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", n, tau,
-                       one.at("sao"), two.at("sao"), two.at("sao") / one.at("sao"),
-                       two.at("blur"), two.at("depth_pyramid"));
+                       one.at("sao"), two.at("sao"), two.at("sao") / one.at("sao"), two.at("blur"),
+                       two.at("depth_pyramid"));
             std::fflush(stdout);
         }
         fmt::print("\n{} {}x{}, scene {}, {} ({}), median of {} frames after {} warm-up frames\n",
