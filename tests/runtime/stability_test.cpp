@@ -58,7 +58,7 @@ TEST_CASE("stability: a scene scaled by 1e-3 and by 1e3 with matching lengths gi
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const hc::Parameters cases;
-    REQUIRE(cases.scale_tolerance <= 1e-3f);  // the documented bound, not whatever is shared
+    REQUIRE(cases.scale_tolerance <= 1e-3);  // the documented bound, not whatever is shared
     for (const std::string& name : cases.scaled_scenes) {
         const Scene base = make_reference_scene(name);
         const RenderSettings settings = hc::base_settings(cases.width, cases.height);
@@ -99,7 +99,7 @@ TEST_CASE("stability: an open floor 1 km away seen through a 1 mm near plane sta
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const hc::Parameters cases;
-    REQUIRE(cases.open_surface_min_visibility >= 0.99f);
+    REQUIRE(cases.open_surface_min_visibility >= 0.99);
     for (float pitch : cases.far_pitches) {
         // The view's centre ray meets the floor 1 km away.
         const Scene scene = hc::far_floor(pitch);
@@ -122,7 +122,7 @@ TEST_CASE("stability: an open plane seen at grazing angles keeps AV >= 0.99", "[
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const hc::Parameters cases;
-    REQUIRE(cases.open_surface_min_visibility >= 0.99f);
+    REQUIRE(cases.open_surface_min_visibility >= 0.99);
     for (float pitch : cases.grazing_pitches) {
         const Scene scene = hc::grazing_floor(pitch);
         for (int layers : cases.layers) {

@@ -22,7 +22,7 @@ struct Parameters {
     // length setting scaled to match, give the AV of the unscaled scene.
     std::vector<std::string> scaled_scenes = {"ref-crease", "ref-slab"};
     std::vector<float> scales = {1e-3f, 1e3f, 1.0f / 1024.0f, 1024.0f};
-    float scale_tolerance = 1e-3f;  // largest |AV difference| per pixel
+    double scale_tolerance = 1e-3;  // largest |AV difference| per pixel
 
     // Far geometry: an open floor whose centre ray is 1 km long, seen through
     // a 1 mm near plane, at these pitches (degrees) and AO radii (m).
@@ -43,7 +43,7 @@ struct Parameters {
     std::vector<std::string> tiny_scenes = {"ref-slab", "cornell"};
 
     // An open plane is unoccluded: its AV may not fall below this.
-    float open_surface_min_visibility = 0.99f;
+    double open_surface_min_visibility = 0.99;
 };
 
 // The settings every case starts from: the given size and a small shadow map
