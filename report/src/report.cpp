@@ -631,6 +631,9 @@ ReportResult run_report(const ReportOptions& options) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - stability_start)
                 .count()));
         write_text(options.output / "stability.csv", format_stability_csv(result.stability));
+    } else {
+        // A skipped table must not be read from an earlier run into the same folder.
+        fs::remove(options.output / "stability.csv");
     }
     if (options.float_max_n > 0) {
         const auto float_start = std::chrono::steady_clock::now();
@@ -644,6 +647,8 @@ ReportResult run_report(const ReportOptions& options) {
             options.float_max_n,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - float_start).count()));
         write_text(options.output / "float_vs_exact.csv", format_float_csv(result.float_choices));
+    } else {
+        fs::remove(options.output / "float_vs_exact.csv");
     }
 
     result.info.seconds =

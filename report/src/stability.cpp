@@ -136,10 +136,14 @@ std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& case
             const std::string id = fmt::format("scale {} x{}", name, scale_label(s));
             // A power of two scales every float exactly: nothing may move.
             const bool exact = std::exp2(std::round(std::log2(s))) == s;
-            table.at_most(id, "max |AV - unscaled AV|, raw", worst_difference(scaled.raw, unit.raw),
+            // AV outside [0, 1] or a non-finite depth fails the case too.
+            const bool valid = invalid_pixels(scaled) == 0;
+            table.at_most(id, "max |AV - unscaled AV|, raw",
+                          valid ? worst_difference(scaled.raw, unit.raw) : kNaN,
                           exact ? 0.0 : cases.scale_tolerance);
             table.at_most(id, "max |AV - unscaled AV|, blurred",
-                          worst_difference(scaled.blurred, unit.blurred), cases.scale_tolerance);
+                          valid ? worst_difference(scaled.blurred, unit.blurred) : kNaN,
+                          cases.scale_tolerance);
         }
     }
 

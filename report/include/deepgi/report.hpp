@@ -169,7 +169,7 @@ struct ReportOptions {
     // The numerical hard cases (stability.csv); false skips them.
     bool stability = true;
     // Exact against double-precision tau search for n = 1..float_max_n
-    // (float_vs_exact.csv); 0 skips it. 1024 costs about 95 s on two cores.
+    // (float_vs_exact.csv); 0 skips it. 1024 costs 95 to 130 s on two cores.
     int float_max_n = 1024;
     std::filesystem::path output;
     // One line per finished step (for the log); may be empty.
