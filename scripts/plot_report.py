@@ -50,7 +50,8 @@ def read_rows(path):
         rows = []
         for raw in csv.DictReader(f):
             row = {"scene": raw["scene"], "pattern": raw["pattern"],
-                   "taps": int(raw["taps"]), "layers": int(raw["layers"])}
+                   "taps": int(raw["taps"]), "layers": int(raw["layers"]),
+                   "device": raw.get("device", "")}
             for key, value in raw.items():
                 if key not in row:
                     row[key] = number(value)
@@ -224,6 +225,88 @@ def plot_images(plt, directory, scenes):
         plt.close(fig)
         made.append((scene, f"images/{stem}.png"))
     return made
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+# The case families of stability.csv, by the start of the case name.
+STABILITY_FAMILIES = (
+    ("scale", "Same scene scaled (every length scaled to match; factors in the case names)"),
+    ("far floor", "Open floor 1 km away, 1 mm near plane"),
+    ("grazing floor", "Open floor at grazing angles"),
+    ("guard-band edge", "Depth discontinuity in the guard band"),
+    ("1x1", "1x1 image"),
+    ("3x2", "3x2 image"),
+)
+
+
+def stability_section(directory, add):
+    """States the hard cases (stability.csv) and the exact-against-double
+    search comparison (float_vs_exact.csv), when the run measured them."""
+    cases = read_csv(os.path.join(directory, "stability.csv"))
+    choices = read_csv(os.path.join(directory, "float_vs_exact.csv"))
+    if cases is None and choices is None:
+        return
+    add("## Numerical stability\n")
+    if cases is not None:
+        passing = sum(1 for c in cases if c["pass"] == "1")
+        add("The hard cases of `tests/runtime/stability_test.cpp`, rendered by the report with "
+            f"the shipped tap pattern: **{passing} of {len(cases)} checks pass**. "
+            "Worst value per kind of case and measured quantity (every row is in "
+            "`stability.csv`):\n")
+        add("| case | quantity | checks | pass | worst | bound |")
+        add("|:--|:--|--:|--:|--:|:--|")
+        groups = {}
+        for c in cases:
+            family = next((title for prefix, title in STABILITY_FAMILIES
+                           if c["case"].startswith(prefix)), c["case"])
+            groups.setdefault((family, c["quantity"], c["test"]), []).append(c)
+        for (family, quantity, test), members in groups.items():
+            values = [float(c["value"]) for c in members]
+            if any(math.isnan(v) for v in values):
+                worst = float("nan")
+            else:
+                worst = max(values) if test == "<=" else min(values)
+            bounds = sorted({float(c["tolerance"]) for c in members})
+            bound = " or ".join(f"{test} {b:g}" for b in bounds)
+            good = sum(1 for c in members if c["pass"] == "1")
+            add(f"| {family} | {quantity.replace('|', '&#124;')} | {len(members)} | {good} | "
+                f"{worst:.4g} | {bound} |")
+        add("")
+        failures = [c for c in cases if c["pass"] != "1"]
+        if failures:
+            add("Failing checks:\n")
+            for c in failures:
+                add(f"- {c['case']}: {c['quantity']} = {c['value']} (must be {c['test']} "
+                    f"{float(c['tolerance']):g})")
+            add("")
+        else:
+            add("Scaling by a power of two changes no raw AV pixel at all (bound 0); by 1e-3 and "
+                "1e3 the largest change is the worst value above.\n")
+    if choices is not None and choices:
+        max_n = max(int(c["n"]) for c in choices)
+        differing = [c for c in choices if c["differs"] == "1"]
+        worse = [c for c in differing if c["exact_tie"] != "1"]
+        add(f"**Exact against double-precision tau search** (n = 1..{max_n}, "
+            "`float_vs_exact.csv`): a double implementation of the same discrepancy picks a "
+            f"different tau than the exact integer search at **{len(differing)}** n; "
+            + ("every one of them is another exact minimiser (the same K), so rounding costs "
+               "reproducibility, not quality." if not worse else
+               f"{len(worse)} of them have a larger exact K (a worse pattern): "
+               + ", ".join(c["n"] for c in worse) + ".") + "\n")
+        if differing:
+            add("| n | exact tau | double tau | exact K | K of double tau | 4n^2 |")
+            add("|--:|--:|--:|--:|--:|--:|")
+            for c in differing[:8]:
+                add(f"| {c['n']} | {c['exact_tau']} | {c['float_tau']} | {c['exact_K']} | "
+                    f"{c['float_tau_exact_K']} | {c['denominator']} |")
+            add("")
+            add("The n where they differ: " + ", ".join(c["n"] for c in differing) + ".\n")
 
 
 def summary(directory, rows, info, discrepancy_series, images):
@@ -456,6 +539,8 @@ def summary(directory, rows, info, discrepancy_series, images):
     add("- **Against the paper:** " + ("; ".join(against) + "." if against else
                                        "nothing in this run contradicts it."))
     add("")
+
+    stability_section(directory, add)
 
     add("## Figures\n")
     add("![error against milliseconds](error_vs_ms.png)\n")

@@ -103,6 +103,10 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--seed", report.seed, "Reference random seed");
     app.add_option("--image-taps", report.image_taps,
                    "Tap count of the per-scene truth/estimate images (nearest in --taps)");
+    app.add_flag("!--no-stability", report.stability,
+                 "Skip the numerical hard cases (stability.csv)");
+    app.add_option("--float-max-n", report.float_max_n,
+                   "Exact against double tau search for n = 1..N (0: skip)");
     app.add_flag("!--no-plots", options.plots, "Skip the matplotlib figures and summary.md");
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
     app.add_option("--plot-script", options.plot_script, "scripts/plot_report.py");

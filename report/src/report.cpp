@@ -260,11 +260,12 @@ std::optional<double> Row::get(std::string_view column) const {
 }
 
 std::string format_csv(const std::vector<Row>& rows) {
-    std::string text = "scene,pattern,taps,layers";
+    std::string text = "scene,pattern,taps,layers,device";
     for (const std::string& column : value_columns()) text += "," + column;
     text += "\n";
     for (const Row& row : rows) {
-        text += fmt::format("{},{},{},{}", row.scene, row.pattern, row.taps, row.layers);
+        text += fmt::format("{},{},{},{},{}", csv_field(row.scene), csv_field(row.pattern),
+                            row.taps, row.layers, csv_field(row.device));
         for (const std::string& column : value_columns()) {
             const auto value = row.get(column);
             text += value ? fmt::format(",{}", *value) : ",";
@@ -291,27 +292,64 @@ std::string json_string(std::string_view text) {
 }
 }  // namespace
 
-std::string format_json(const std::vector<Row>& rows, const ReportInfo& info) {
+namespace {
+std::string json_number(double value) {
+    return std::isfinite(value) ? fmt::format("{}", value) : "null";
+}
+}  // namespace
+
+std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
+                        const std::vector<StabilityRow>& stability,
+                        const std::vector<spiral_float::Choice>& float_choices) {
     std::string text = "{\"info\":{";
     text += fmt::format(
-        "\"renderer\":{},\"timing\":{},\"width\":{},\"height\":{},\"guard\":{},\"rays\":{},"
-        "\"converged_taps\":{},\"warmup\":{},\"frames\":{},\"seconds\":{}",
-        json_string(info.renderer),
+        "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
+        "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
+        "\"seconds\":{}",
+        json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
         info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];
-        text += fmt::format("{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{}",
-                            json_string(row.scene), json_string(row.pattern), row.taps, row.layers);
+        text += fmt::format("{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{},\"device\":{}",
+                            json_string(row.scene), json_string(row.pattern), row.taps, row.layers,
+                            json_string(row.device));
         for (const std::string& column : value_columns()) {
             const auto value = row.get(column);
-            text += fmt::format(",\"{}\":{}", column, value ? fmt::format("{}", *value) : "null");
+            text += fmt::format(",\"{}\":{}", column, value ? json_number(*value) : "null");
         }
         text += r + 1 < rows.size() ? "},\n" : "}\n";
     }
-    return text + "]}\n";
+    text += "],\n\"stability\":[\n";
+    for (std::size_t r = 0; r < stability.size(); ++r) {
+        const StabilityRow& row = stability[r];
+        text += fmt::format(
+            "{{\"case\":{},\"quantity\":{},\"value\":{},\"test\":{},\"tolerance\":{},"
+            "\"pass\":{}}}{}",
+            json_string(row.case_name), json_string(row.quantity), json_number(row.value),
+            json_string(row.test), json_number(row.tolerance), row.pass ? "true" : "false",
+            r + 1 < stability.size() ? ",\n" : "\n");
+    }
+    // Only the n where the choices differ; float_vs_exact.csv has every n.
+    int differing = 0, larger_k = 0;
+    std::string listed;
+    for (const spiral_float::Choice& c : float_choices) {
+        if (!c.differs()) continue;
+        ++differing;
+        larger_k += !c.tie();
+        listed += fmt::format(
+            "{}{{\"n\":{},\"exact_tau\":{},\"exact_K\":{},\"float_tau\":{},"
+            "\"float_tau_exact_K\":{},\"denominator\":{}}}",
+            listed.empty() ? "" : ",\n", c.n, c.exact_tau, c.exact_k, c.float_tau,
+            c.float_tau_exact_k, c.denominator);
+    }
+    text += fmt::format(
+        "],\n\"float_vs_exact\":{{\"max_n\":{},\"differing\":{},\"larger_K\":{},"
+        "\"rows\":[\n{}{}]}}}}\n",
+        float_choices.size(), differing, larger_k, listed, listed.empty() ? "" : "\n");
+    return text;
 }
 
 void validate(const ReportOptions& options) {
@@ -348,6 +386,9 @@ void validate(const ReportOptions& options) {
     if (options.warmup < 0 || options.warmup > 1000)
         throw InputError(fmt::format("--warmup {} is out of range (0 to 1000)", options.warmup));
     if (options.threads < 0) throw InputError("--threads must be >= 0");
+    if (options.float_max_n < 0 || options.float_max_n > 4096)
+        throw InputError(
+            fmt::format("--float-max-n {} is out of range (0 to 4096)", options.float_max_n));
     if (options.output.empty()) throw InputError("report needs --output DIR");
     if (fs::exists(options.output) && !fs::is_directory(options.output))
         throw InputError(fmt::format("--output '{}' is not a directory", options.output.string()));
@@ -390,7 +431,9 @@ ReportResult run_report(const ReportOptions& options) {
     write_text(options.output / "discrepancy.csv", format_discrepancy_csv(options.patterns, 64));
 
     ReportResult result;
-    result.info.renderer = query_context_info().renderer;
+    const ContextInfo context = query_context_info();
+    result.info.renderer = context.renderer;
+    result.info.vendor = context.vendor;
     result.info.width = options.width;
     result.info.height = options.height;
     result.info.guard = guard;
@@ -527,6 +570,7 @@ ReportResult run_report(const ReportOptions& options) {
                     row.pattern = pattern;
                     row.taps = n;
                     row.layers = layers;
+                    row.device = result.info.renderer;
                     auto add = [&](const std::string& column, std::optional<double> value) {
                         row.values.push_back({column, value ? finite(*value) : std::nullopt});
                     };
@@ -577,10 +621,41 @@ ReportResult run_report(const ReportOptions& options) {
         }
     }
 
+    if (options.stability) {
+        const auto stability_start = std::chrono::steady_clock::now();
+        result.stability = run_stability_cases(hard_cases::Parameters{}, options.log);
+        const auto passing = std::count_if(result.stability.begin(), result.stability.end(),
+                                           [](const StabilityRow& row) { return row.pass; });
+        log(fmt::format(
+            "stability: {} of {} checks pass, {:.1f} s", passing, result.stability.size(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - stability_start)
+                .count()));
+        write_text(options.output / "stability.csv", format_stability_csv(result.stability));
+    } else {
+        // A skipped table must not be read from an earlier run into the same folder.
+        fs::remove(options.output / "stability.csv");
+    }
+    if (options.float_max_n > 0) {
+        const auto float_start = std::chrono::steady_clock::now();
+        result.float_choices =
+            spiral_float::compare_float_search(options.float_max_n, options.threads);
+        const auto differing =
+            std::count_if(result.float_choices.begin(), result.float_choices.end(),
+                          [](const spiral_float::Choice& c) { return c.differs(); });
+        log(fmt::format(
+            "float vs exact: double picks another tau at {} of n = 1..{}, {:.1f} s", differing,
+            options.float_max_n,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - float_start).count()));
+        write_text(options.output / "float_vs_exact.csv", format_float_csv(result.float_choices));
+    } else {
+        fs::remove(options.output / "float_vs_exact.csv");
+    }
+
     result.info.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_text(options.output / "report.csv", format_csv(result.rows));
-    write_text(options.output / "report.json", format_json(result.rows, result.info));
+    write_text(options.output / "report.json",
+               format_json(result.rows, result.info, result.stability, result.float_choices));
     return result;
 }
 

@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "float_discrepancy.hpp"
+#include "spiral/float_compare.hpp"
 #include "spiral/optimizer.hpp"
 
 TEST_CASE("float discrepancy: equals the exact K / 4n^2 when no two taps share an angle",
@@ -61,4 +61,30 @@ TEST_CASE("float discrepancy: where the double search differs it picks another e
         CHECK(std::find(exact.ties.begin(), exact.ties.end(), pick.tau) != exact.ties.end());
         CHECK(spiral::discrepancy_scaled(n, pick.tau) == exact.scaled);
     }
+}
+
+TEST_CASE("float discrepancy: the threaded comparison matches both searches run one n at a time",
+          "[optimizer]") {
+    const int max_n = 40;
+    const std::vector<spiral_float::Choice> choices = spiral_float::compare_float_search(max_n, 2);
+    REQUIRE(choices.size() == std::size_t(max_n));
+    int differing = 0;
+    for (const spiral_float::Choice& c : choices) {
+        INFO("n = " << c.n);
+        const spiral::SearchResult exact = spiral::search(c.n);
+        CHECK(c.exact_tau == exact.tau);
+        CHECK(c.exact_k == exact.scaled);
+        CHECK(c.denominator == 4 * std::int64_t{c.n} * c.n);
+        CHECK(c.float_tau == spiral_float::search(c.n).tau);
+        CHECK(c.float_tau_exact_k == spiral::discrepancy_scaled(c.n, c.float_tau));
+        // A tie means the double choice is one of the exact minimisers.
+        const bool among_ties =
+            std::find(exact.ties.begin(), exact.ties.end(), c.float_tau) != exact.ties.end();
+        CHECK(c.tie() == among_ties);
+        differing += c.differs();
+    }
+    // docs/optimizer.md lists n = 7 as the first where the choices differ.
+    CHECK(choices[6].differs());
+    CHECK(differing > 0);
+    for (int n = 1; n < 7; ++n) CHECK_FALSE(choices[std::size_t(n - 1)].differs());
 }

@@ -9,6 +9,7 @@
 #include <spiral/optimizer.hpp>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
@@ -24,16 +25,67 @@ namespace report = deepgi::report;
 
 namespace {
 
+// One CSV record (RFC 4180: quoted fields may hold commas and doubled quotes).
 std::vector<std::string> split(const std::string& line, char separator) {
-    std::vector<std::string> fields;
-    std::string field;
-    std::istringstream in(line);
-    while (std::getline(in, field, separator)) fields.push_back(field);
-    if (!line.empty() && line.back() == separator) fields.push_back("");
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                fields.back() += '"';
+                ++i;
+            } else if (c == '"') {
+                quoted = false;
+            } else {
+                fields.back() += c;
+            }
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == separator) {
+            fields.emplace_back();
+        } else {
+            fields.back() += c;
+        }
+    }
     return fields;
 }
 
+// Header and rows of a CSV file, each row as column name -> field.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
+    std::istringstream in(spiral::test::read_file(path));
+    std::string line;
+    std::vector<std::map<std::string, std::string>> rows;
+    if (!std::getline(in, line)) return rows;
+    const std::vector<std::string> header = split(line, ',');
+    while (std::getline(in, line)) {
+        const std::vector<std::string> fields = split(line, ',');
+        REQUIRE(fields.size() == header.size());
+        std::map<std::string, std::string> row;
+        for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = fields[i];
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+    std::size_t count = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+        ++count;
+    return count;
+}
+
 }  // namespace
+
+TEST_CASE("report: CSV fields with commas and quotes are quoted and read back", "[report]") {
+    CHECK(report::csv_field("cornell") == "cornell");
+    CHECK(report::csv_field("llvmpipe (LLVM 15.0.6, 256 bits)") ==
+          "\"llvmpipe (LLVM 15.0.6, 256 bits)\"");
+    CHECK(report::csv_field("a \"b\"") == "\"a \"\"b\"\"\"");
+    const std::string line =
+        report::csv_field("x,y") + "," + report::csv_field("say \"hi\"") + ",3";
+    CHECK(split(line, ',') == std::vector<std::string>{"x,y", "say \"hi\"", "3"});
+}
 
 TEST_CASE("report: error statistics match a hand computation", "[report]") {
     const FloatImage estimate{2, 2, 1, {0.5f, 0.8f, 0.25f, 1.0f}};
@@ -103,17 +155,21 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     options.converged_taps = 128;
     options.warmup = 0;
     options.frames = 1;
+    options.float_max_n = 64;
     options.output = output;
     const report::ReportResult result = report::run_report(options);
     REQUIRE(result.rows.size() == 8);
+    const std::string device = deepgi::query_context_info().renderer;
+    REQUIRE_FALSE(device.empty());
 
     // Read the CSV back as a consumer would.
     std::istringstream csv(spiral::test::read_file(output / "report.csv"));
     std::string line;
     REQUIRE(std::getline(csv, line));
     const std::vector<std::string> header = split(line, ',');
-    REQUIRE(header.size() == 4 + report::value_columns().size());
+    REQUIRE(header.size() == 5 + report::value_columns().size());
     CHECK(header[0] == "scene");
+    CHECK(header[4] == "device");
     std::map<std::string, std::size_t> column;
     for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
     std::set<std::string> combinations;
@@ -124,6 +180,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         REQUIRE(fields.size() == header.size());
         ++rows;
         CHECK(fields[0] == "cornell");
+        CHECK(fields[4] == device);  // the context that timed the row labels it
         combinations.insert(fields[1] + "/" + fields[2] + "/" + fields[3]);
         const int taps = std::stoi(fields[2]);
         sampling_error[taps].push_back(std::stod(fields[column.at("conv_raw_mae")]));
@@ -153,9 +210,81 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
          at = json.find("\"scene\":", at + 1))
         ++json_rows;
     CHECK(json_rows == 8);
+    CHECK(count_of(json, "\"device\":") == 8);
     CHECK(fs::exists(output / "discrepancy.csv"));
     CHECK(fs::exists(output / "images" / "cornell-truth.pfm"));
     CHECK(fs::exists(output / "images" / "cornell-estimate.pfm"));
+
+    // The numerical hard cases: one row per check, all passing. The expected
+    // count follows from the documented case set.
+    const deepgi::hard_cases::Parameters cases;
+    const std::size_t layer_counts = cases.layers.size();
+    const std::size_t expected_stability =
+        cases.scaled_scenes.size() * cases.scales.size() * 2     // raw and blurred
+        + cases.far_pitches.size() * cases.far_radii.size() * 2  // lowest AV, floor share
+        + cases.grazing_pitches.size() * layer_counts            // lowest AV
+        + 3 * (layer_counts * cases.guard_radii.size() + 1)      // three edges, + depth ratio
+        + cases.tiny_sizes.size() * cases.tiny_scenes.size();    // invalid pixels
+    const auto stability = read_csv(output / "stability.csv");
+    CHECK(stability.size() == expected_stability);
+    CHECK(result.stability.size() == expected_stability);
+    std::map<std::string, int> families;
+    for (const auto& row : stability) {
+        INFO(row.at("case") << ": " << row.at("quantity") << " = " << row.at("value"));
+        // The pass column agrees with the value and bound written beside it.
+        const double value = std::stod(row.at("value"));
+        const double tolerance = std::stod(row.at("tolerance"));
+        REQUIRE((row.at("test") == "<=" || row.at("test") == ">="));
+        const bool holds = row.at("test") == "<=" ? value <= tolerance : value >= tolerance;
+        CHECK(row.at("pass") == (holds ? "1" : "0"));
+        CHECK(row.at("pass") == "1");
+        const std::string& name = row.at("case");
+        for (const char* family :
+             {"scale ", "far floor", "grazing floor", "guard-band edge", "1x1", "3x2"})
+            if (name.rfind(family, 0) == 0) ++families[family];
+    }
+    CHECK(families.size() == 6);
+    // The scale cases compare against a tolerance of 1e-3 at most, as documented.
+    for (const auto& row : stability)
+        if (row.at("case").rfind("scale ", 0) == 0) CHECK(std::stod(row.at("tolerance")) <= 1e-3);
+    CHECK(count_of(json, "\"case\":") == expected_stability);
+
+    // Exact against double search: one row per n, checked against the optimizer.
+    const auto choices = read_csv(output / "float_vs_exact.csv");
+    REQUIRE(choices.size() == 64);
+    int differing = 0;
+    for (std::size_t i = 0; i < choices.size(); ++i) {
+        const auto& row = choices[i];
+        const int n = std::stoi(row.at("n"));
+        INFO("n = " << n);
+        CHECK(n == int(i) + 1);
+        const spiral::SearchResult exact = spiral::search(n);
+        CHECK(std::stoi(row.at("exact_tau")) == exact.tau);
+        CHECK(std::stoll(row.at("exact_K")) == exact.scaled);
+        const int float_tau = std::stoi(row.at("float_tau"));
+        CHECK(std::stoll(row.at("float_tau_exact_K")) == spiral::discrepancy_scaled(n, float_tau));
+        CHECK(row.at("differs") == (float_tau != exact.tau ? "1" : "0"));
+        differing += float_tau != exact.tau;
+    }
+    CHECK(differing > 0);  // n = 7 differs (docs/optimizer.md)
+    CHECK(choices[6].at("differs") == "1");
+    CHECK(json.find(fmt::format("\"differing\":{},", differing)) != std::string::npos);
+
+    // The summary states both, as the plot script writes it (when matplotlib is there).
+    if (fs::exists("/usr/bin/python3") &&
+        spiral::test::run_command("/usr/bin/python3 -c 'import matplotlib'").status == 0) {
+        const auto plot = spiral::test::run_command("/usr/bin/python3 '" +
+                                                    std::string(DEEPGI_PLOT_REPORT_SCRIPT) + "' '" +
+                                                    output.string() + "'");
+        INFO(plot.err);
+        REQUIRE(plot.status == 0);
+        const std::string summary = spiral::test::read_file(output / "summary.md");
+        CHECK(summary.find("## Numerical stability") != std::string::npos);
+        CHECK(summary.find(fmt::format("**{} of {} checks pass**", expected_stability,
+                                       expected_stability)) != std::string::npos);
+        CHECK(summary.find(fmt::format("exact integer search at **{}** n", differing)) !=
+              std::string::npos);
+    }
     fs::remove_all(output);
 }
 
@@ -166,6 +295,7 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
     for (const std::string& arguments :
          {std::string("--taps 0"), std::string("--taps 4,x"), std::string("--patterns fibonacci"),
           std::string("--layers 3"), std::string("--size 10by10"), std::string("--rays 0"),
+          std::string("--float-max-n -1"), std::string("--float-max-n 5000"),
           std::string("--scenes no-such-scene")}) {
         const auto run = spiral::test::run_command(
             program + " report " + arguments + " --no-plots --output '" + output.string() + "'");

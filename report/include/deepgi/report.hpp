@@ -5,9 +5,11 @@
 // taps and against the ray-traced reference. The production shaders run with
 // tap headers written at run time into a scratch folder searched before the
 // build's generated headers.
+#include "deepgi/hard_cases.hpp"
 #include "deepgi/image_io.hpp"
 
 #include <spiral/codegen.hpp>
+#include <spiral/float_compare.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -83,6 +85,9 @@ struct Row {
     std::string pattern;
     int taps = 0;
     int layers = 0;
+    // GL_RENDERER of the context that rendered and timed the row, so rows
+    // from a GPU and from llvmpipe stay apart when files are merged.
+    std::string device;
     std::vector<Value> values;  // same columns in the same order on every row
 
     std::optional<double> get(std::string_view column) const;
@@ -91,18 +96,54 @@ struct Row {
 // The measured columns, in order; docs/report.md says what each means.
 const std::vector<std::string>& value_columns();
 
-// scene,pattern,taps,layers,<value_columns...>; numbers in shortest round-trip
-// form, so reading a file back gives the same doubles.
+// scene,pattern,taps,layers,device,<value_columns...>; numbers in shortest
+// round-trip form, so reading a file back gives the same doubles. Text fields
+// holding a comma or a quote are quoted (RFC 4180): GL_RENDERER often does.
 std::string format_csv(const std::vector<Row>& rows);
+
+// One CSV field: as is, or quoted (quotes doubled) when it holds a comma, a
+// quote or a line break.
+std::string csv_field(std::string_view text);
+
+// ---------------------------------------------------------------------------
+// Numerical hard cases (deepgi/hard_cases.hpp): one row per measured quantity
+// of one case, with the bound it must keep.
+
+struct StabilityRow {
+    std::string case_name;  // e.g. "scale ref-crease x0.001"
+    std::string quantity;   // what value measures
+    double value = 0.0;     // NaN when the case produced non-finite output
+    std::string test;       // "<=" or ">=": value test tolerance must hold
+    double tolerance = 0.0;
+    bool pass = false;  // false for a NaN value
+};
+
+// Renders every case of `cases` with the build's shaders and tap headers and
+// measures them as tests/runtime/stability_test.cpp checks them. Needs a
+// current GL context; `log` (may be empty) gets one line per case.
+std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& cases,
+                                              const std::function<void(const std::string&)>& log);
+
+// case,quantity,value,test,tolerance,pass
+std::string format_stability_csv(const std::vector<StabilityRow>& rows);
+
+// n,exact_tau,exact_K,float_tau,float_tau_exact_K,denominator,differs,exact_tie:
+// one row per n (spiral_float::compare_float_search).
+std::string format_float_csv(const std::vector<spiral_float::Choice>& choices);
 
 struct ReportInfo {
     std::string renderer;  // GL_RENDERER
+    std::string vendor;    // GL_VENDOR
     bool cpu_clock = true;
     int width = 0, height = 0, guard = 0, rays = 0, converged_taps = 0;
     int warmup = 0, frames = 0;
     double seconds = 0.0;
 };
-std::string format_json(const std::vector<Row>& rows, const ReportInfo& info);
+// {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
+// last two hold what run_report measured of them (empty when skipped).
+std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
+                        const std::vector<StabilityRow>& stability = {},
+                        const std::vector<spiral_float::Choice>& float_choices = {});
 
 // ---------------------------------------------------------------------------
 // Running it
@@ -125,6 +166,11 @@ struct ReportOptions {
     // configuration, or the nearest tap count in the run.
     std::string image_pattern = "optimal";
     int image_taps = 11;
+    // The numerical hard cases (stability.csv); false skips them.
+    bool stability = true;
+    // Exact against double-precision tau search for n = 1..float_max_n
+    // (float_vs_exact.csv); 0 skips it. 1024 costs 95 to 130 s on two cores.
+    int float_max_n = 1024;
     std::filesystem::path output;
     // One line per finished step (for the log); may be empty.
     std::function<void(const std::string&)> log;
@@ -136,12 +182,15 @@ void validate(const ReportOptions& options);
 struct ReportResult {
     std::vector<Row> rows;
     ReportInfo info;
+    std::vector<StabilityRow> stability;
+    std::vector<spiral_float::Choice> float_choices;  // one per n, in order
 };
 
 // Renders everything and writes into options.output (created if missing):
 // report.csv, report.json, discrepancy.csv (D(n) of every pattern for
-// n = 1..64) and images/<scene>-{truth,estimate}.pfm (viewport only,
-// NaN where not compared). Needs a current GL context. Every file is
+// n = 1..64), images/<scene>-{truth,estimate}.pfm (viewport only,
+// NaN where not compared), stability.csv and float_vs_exact.csv (each
+// unless skipped). Needs a current GL context. Every file is
 // written atomically.
 ReportResult run_report(const ReportOptions& options);
 
