@@ -214,7 +214,8 @@ int run_reference_command(int argc, char** argv) {
     app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
     app.add_option("--radiosity-radius", options.radiosity_radius,
                    "Radiosity radius (m), as deepgi --radiosity-radius");
-    app.add_option("--irradiance-rays", options.irradiance_rays, "Most irradiance rays per pixel");
+    app.add_option("--irradiance-rays", options.irradiance_rays,
+                   "Most irradiance rays per pixel (cosine directions and emitter shadow rays)");
     app.add_option("--irradiance-min-rays", options.irradiance_min_rays,
                    "Fewest irradiance rays per pixel");
     app.add_option("--irradiance-target-error", options.irradiance_target_error,

@@ -1,6 +1,7 @@
-// Monte Carlo ambient visibility on the G-buffer's pixel grid. Every pixel
-// draws its rays from its own random stream (seed, pixel index), so the
-// images do not depend on the number of threads or on scheduling.
+// Monte Carlo ambient visibility and one-bounce irradiance on the G-buffer's
+// pixel grid. Every pixel draws its rays from its own random stream (seed,
+// pixel index), so the images do not depend on the number of threads or on
+// scheduling.
 #include "deepgi/reference.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -270,9 +271,13 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
                                             float(distance * (1.0 - 1e-4)))) {
                             const double p_emitter =
                                 emitter.probability / emitter.area * distance * distance / cos_y;
-                            const double weight = power_heuristic(p_emitter, cos_x / pi);
-                            // L cos_x / p_emitter, as E / pi.
-                            value += emitter.emissive * (weight * cos_x / (pi * p_emitter));
+                            // L cos_x / p_emitter times the power heuristic
+                            // weight p_emitter^2 / (p_emitter^2 + p_cos^2),
+                            // as E / pi; written so that no density divides.
+                            const double p_cos = cos_x / pi;
+                            value +=
+                                emitter.emissive * (cos_x * p_emitter /
+                                                    (pi * (p_emitter * p_emitter + p_cos * p_cos)));
                         }
                     }
                 }
