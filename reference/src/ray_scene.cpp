@@ -24,6 +24,9 @@ struct RayScene::State {
     std::vector<Material> materials;
     std::vector<TextureImage> textures;
     KeyLight key_light;
+    std::vector<RayScene::Emitter> emitters;
+    std::vector<double> emitter_cdf;  // running sum of the probabilities
+    std::vector<int> emitter_of;      // per triangle: index into emitters, or -1
     ~State() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -85,6 +88,44 @@ RayScene::RayScene(const Scene& scene) : state_(std::make_unique<State>()) {
             triangles, (std::size_t(batch.first_index) + batch.index_count) / 3);
         for (std::size_t t = first; t < last; ++t) s.triangle_material[t] = batch.material;
     }
+    // Emitters, in triangle order, with their power-times-area weights.
+    s.emitter_of.assign(triangles, -1);
+    double total = 0.0;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const int m = s.triangle_material[t];
+        if (m < 0) continue;
+        const glm::dvec3 emissive(s.materials[std::size_t(m)].emissive);
+        const double power = (emissive.x + emissive.y + emissive.z) / 3.0;
+        if (!(power > 0.0) || !std::isfinite(power)) continue;
+        const glm::dvec3 p0(scene.vertices[scene.indices[3 * t]].position);
+        const glm::dvec3 p1(scene.vertices[scene.indices[3 * t + 1]].position);
+        const glm::dvec3 p2(scene.vertices[scene.indices[3 * t + 2]].position);
+        const glm::dvec3 cross = glm::cross(p1 - p0, p2 - p0);
+        const double area = 0.5 * glm::length(cross);
+        if (!(area > 0.0) || !std::isfinite(area)) continue;
+        RayScene::Emitter emitter;
+        emitter.primitive = unsigned(t);
+        emitter.p0 = p0;
+        emitter.edge1 = p1 - p0;
+        emitter.edge2 = p2 - p0;
+        // The same normal the hits report, so both ways of reaching an
+        // emitter agree on which side faces the point.
+        emitter.normal = glm::dvec3(s.face_normals[t]);
+        emitter.emissive = emissive;
+        emitter.area = area;
+        emitter.probability = power * area;
+        total += power * area;
+        s.emitter_of[t] = int(s.emitters.size());
+        s.emitters.push_back(emitter);
+    }
+    double running = 0.0;
+    for (RayScene::Emitter& emitter : s.emitters) {
+        emitter.probability /= total;
+        running += emitter.probability;
+        s.emitter_cdf.push_back(running);
+    }
+    if (!s.emitter_cdf.empty()) s.emitter_cdf.back() = 1.0;  // no gap left by rounding
+
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(s.scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -171,6 +212,20 @@ RayScene::Surface RayScene::surface(const Hit& hit) const {
 
 const KeyLight& RayScene::key_light() const {
     return state_->key_light;
+}
+
+const std::vector<RayScene::Emitter>& RayScene::emitters() const {
+    return state_->emitters;
+}
+
+int RayScene::emitter_index(unsigned primitive) const {
+    return primitive < state_->emitter_of.size() ? state_->emitter_of[primitive] : -1;
+}
+
+std::size_t RayScene::pick_emitter(double u) const {
+    const std::vector<double>& cdf = state_->emitter_cdf;
+    const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+    return std::min<std::size_t>(std::size_t(it - cdf.begin()), cdf.size() - 1);
 }
 
 bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const {

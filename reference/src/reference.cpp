@@ -1,6 +1,7 @@
-// Monte Carlo ambient visibility on the G-buffer's pixel grid. Every pixel
-// draws its rays from its own random stream (seed, pixel index), so the
-// images do not depend on the number of threads or on scheduling.
+// Monte Carlo ambient visibility and one-bounce irradiance on the G-buffer's
+// pixel grid. Every pixel draws its rays from its own random stream (seed,
+// pixel index), so the images do not depend on the number of threads or on
+// scheduling.
 #include "deepgi/reference.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -108,11 +109,13 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
     return result;
 }
 
-glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& hit,
-                                    glm::vec3 position) {
-    const RayScene::Surface surface = scene.surface(hit);
-    glm::dvec3 radiance(surface.emissive);
-    if (surface.albedo == glm::vec3(0.0f)) return radiance;
+namespace {
+
+// The key light reflected at `position` on `hit`'s surface: L(y) without the
+// emissive term.
+glm::dvec3 reflected_key_light(const RayScene& scene, const RayScene::Hit& hit,
+                               const RayScene::Surface& surface, glm::vec3 position) {
+    if (surface.albedo == glm::vec3(0.0f)) return glm::dvec3(0.0);
     // The key light as light_irradiance() in lighting.glsl, in world space.
     const KeyLight& light = scene.key_light();
     const glm::vec3 axis = glm::normalize(light.direction);
@@ -148,7 +151,7 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
         incident *= cone;
     }
     const float cosine = glm::dot(surface.shading_normal, to_light);
-    if (!(cosine > 0.0f) || incident == glm::vec3(0.0f)) return radiance;
+    if (!(cosine > 0.0f) || incident == glm::vec3(0.0f)) return glm::dvec3(0.0);
     // Shadow ray from just off the side the surface was hit on; the renderer
     // filters a shadow map here, the reference takes the exact visibility.
     const glm::vec3 side = glm::dot(hit.normal, to_light) >= 0.0f ? hit.normal : -hit.normal;
@@ -156,8 +159,27 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
         1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
         1e-6f * scene.scale();
     const glm::vec3 origin = position + side * offset;
-    if (scene.occluded(origin, to_light, 0.0f, shadow_far)) return radiance;
-    return radiance + glm::dvec3(surface.albedo) / pi * glm::dvec3(incident) * double(cosine);
+    if (scene.occluded(origin, to_light, 0.0f, shadow_far)) return glm::dvec3(0.0);
+    return glm::dvec3(surface.albedo) / pi * glm::dvec3(incident) * double(cosine);
+}
+
+// Power heuristic (exponent 2) weight of a technique with density `mine`
+// against one with density `other`, both per unit solid angle.
+double power_heuristic(double mine, double other) {
+    const double a = mine * mine, b = other * other;
+    return a + b > 0.0 ? a / (a + b) : 0.0;
+}
+
+}  // namespace
+
+glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& hit,
+                                    glm::vec3 position) {
+    const RayScene::Surface surface = scene.surface(hit);
+    glm::dvec3 radiance(surface.emissive);
+    const glm::dvec3 reflected = reflected_key_light(scene, hit, surface, position);
+    // Added only when lit, so an unlit point returns its emissive unchanged.
+    if (reflected != glm::dvec3(0.0)) radiance += reflected;
+    return radiance;
 }
 
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
@@ -166,15 +188,23 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
-    // The same offset as for ambient visibility.
+    // The same offset as for ambient visibility. Both techniques measure
+    // directions and distances from the offset origin.
     const float offset =
         1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
         1e-6f * radius;
     const glm::vec3 origin = position + glm::vec3(n) * offset;
+    const glm::dvec3 origin_d(origin);
+    const std::vector<RayScene::Emitter>& emitters = scene.emitters();
+    const bool sample_emitters = !emitters.empty();
 
     Random random{seed};
+    // Sums of one sample's estimate of E / pi: a sample is one cosine
+    // direction plus, when the scene has emitters, one point on an emitter.
+    // Samples are independent, so their spread gives the standard error of
+    // the two techniques together.
     glm::dvec3 sum(0.0), sum_squares(0.0);
-    long long rays = 0;
+    long long samples = 0, rays = 0;
     const int batch = std::max(1, budget.batch);
     auto standard_error = [&](double count) {
         const glm::dvec3 mean = sum / count;
@@ -183,23 +213,81 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
         return pi * glm::sqrt(variance / count);
     };
     while (rays < budget.max_rays) {
-        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++rays) {
+        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++samples) {
+            glm::dvec3 value(0.0);  // this sample's E / pi
+
+            // Cosine-weighted direction (pdf cos / pi): L itself estimates E / pi.
             const double u1 = random.uniform(), u2 = random.uniform();
             const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
             const double z = std::sqrt(std::max(0.0, 1.0 - u1));
             const glm::vec3 w(t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z);
+            ++rays;
             const RayScene::Hit hit = scene.intersect(origin, w, 0.0f, radius);
             // Nothing within the radius, or the back of a one-sided surface:
             // the gather reads neither, so neither sends light here.
-            if (!hit.hit || !(glm::dot(hit.normal, w) < 0.0f)) continue;
-            const glm::dvec3 radiance =
-                direct_outgoing_radiance(scene, hit, origin + w * hit.distance);
-            sum += radiance;
-            sum_squares += radiance * radiance;
+            if (hit.hit && glm::dot(hit.normal, w) < 0.0f) {
+                const glm::vec3 y = origin + w * hit.distance;
+                const RayScene::Surface surface = scene.surface(hit);
+                const glm::dvec3 reflected = reflected_key_light(scene, hit, surface, y);
+                if (reflected != glm::dvec3(0.0)) value += reflected;
+                if (surface.emissive != glm::vec3(0.0f)) {
+                    double weight = 1.0;
+                    const int e = sample_emitters ? scene.emitter_index(hit.primitive) : -1;
+                    if (e >= 0) {
+                        // The density with which emitter sampling would
+                        // have chosen this direction, per unit solid angle.
+                        const RayScene::Emitter& emitter = emitters[std::size_t(e)];
+                        const double distance = double(hit.distance);
+                        const double cos_y = -glm::dot(emitter.normal, glm::dvec3(w));
+                        const double p_emitter = emitter.probability / emitter.area * distance *
+                                                 distance / std::max(cos_y, 1e-12);
+                        weight = power_heuristic(z / pi, p_emitter);
+                    }
+                    value += glm::dvec3(surface.emissive) * weight;
+                }
+            }
+
+            // A point y on an emitter, uniform over its area (pdf
+            // probability / area; per unit solid angle times d^2 / cos_y).
+            // The definition holds here too: nothing beyond the radius,
+            // nothing from a back face, and y must be the first surface.
+            if (sample_emitters) {
+                const double pick = random.uniform(), v1 = random.uniform(), v2 = random.uniform();
+                const RayScene::Emitter& emitter = emitters[scene.pick_emitter(pick)];
+                const double root = std::sqrt(v1);
+                const glm::dvec3 y =
+                    emitter.p0 + emitter.edge1 * (root * (1.0 - v2)) + emitter.edge2 * (root * v2);
+                const glm::dvec3 to_y = y - origin_d;
+                const double distance = glm::length(to_y);
+                if (distance > 0.0 && distance <= double(radius)) {
+                    const glm::dvec3 d = to_y / distance;
+                    const double cos_x = glm::dot(n, d);
+                    const double cos_y = -glm::dot(emitter.normal, d);
+                    if (cos_x > 0.0 && cos_y > 0.0) {
+                        // Stop just short of y so the emitter does not shadow
+                        // itself.
+                        ++rays;
+                        if (!scene.occluded(origin, glm::vec3(d), 0.0f,
+                                            float(distance * (1.0 - 1e-4)))) {
+                            const double p_emitter =
+                                emitter.probability / emitter.area * distance * distance / cos_y;
+                            // L cos_x / p_emitter times the power heuristic
+                            // weight p_emitter^2 / (p_emitter^2 + p_cos^2),
+                            // as E / pi; written so that no density divides.
+                            const double p_cos = cos_x / pi;
+                            value +=
+                                emitter.emissive * (cos_x * p_emitter /
+                                                    (pi * (p_emitter * p_emitter + p_cos * p_cos)));
+                        }
+                    }
+                }
+            }
+            sum += value;
+            sum_squares += value * value;
         }
         if (rays >= budget.min_rays) {
-            const glm::dvec3 error = standard_error(double(rays));
-            const glm::dvec3 e = pi * sum / double(rays);
+            const glm::dvec3 error = standard_error(double(samples));
+            const glm::dvec3 e = pi * sum / double(samples);
             const double target =
                 std::max(budget.target_absolute_error,
                          budget.target_relative_error * std::max({e.x, e.y, e.z}));
@@ -207,10 +295,11 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
         }
     }
     IrradianceSample result;
-    const double count = double(std::max<long long>(rays, 1));
+    const double count = double(std::max<long long>(samples, 1));
     result.irradiance = pi * sum / count;
     result.standard_error = standard_error(count);
     result.rays = int(rays);
+    result.samples = int(samples);
     return result;
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace deepgi {
 
@@ -53,6 +54,27 @@ public:
     Surface surface(const Hit& hit) const;
     // The scene's key light (copied at construction).
     const KeyLight& key_light() const;
+
+    // A triangle that emits (some channel of its emissive above 0, area above
+    // 0), for sampling emitters directly. Its emission is uniform: surface()
+    // reads the material's emissive factor and no emissive texture.
+    struct Emitter {
+        unsigned primitive = 0;
+        glm::dvec3 p0{0.0}, edge1{0.0}, edge2{0.0};  // points p0 + s edge1 + t edge2
+        glm::dvec3 normal{0.0};                      // unit, counter-clockwise side
+        glm::dvec3 emissive{0.0};
+        double area = 0.0;
+        // Chance of being picked: power x area (power: mean emissive channel)
+        // over the scene's total, so the density per unit area,
+        // probability / area, is proportional to the emitter's power.
+        double probability = 0.0;
+    };
+    const std::vector<Emitter>& emitters() const;
+    // Index into emitters() of triangle `primitive`, or -1 if it does not emit.
+    int emitter_index(unsigned primitive) const;
+    // The emitter whose share of [0, 1) in the order of emitters() holds u,
+    // so emitter i comes out with its probability.
+    std::size_t pick_emitter(double u) const;
 
 private:
     struct State;
@@ -100,22 +122,38 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
 // smoothstep cone), n_s the shading normal, and V a shadow ray to the light
 // (exact, where the renderer filters a shadow map). This is what deep
 // radiosity's B(Y) holds with boost 1, rho_prop 0 and no clamp.
-// Estimated with cosine-weighted directions (pdf cos / pi): E = pi * mean(L);
-// standard error pi * sqrt(sample variance / rays), per channel.
+//
+// Estimator: each sample is one cosine-weighted direction (pdf cos / pi) and,
+// when the scene has emitters, one point on an emitter (next-event
+// estimation: a triangle picked by power x area, a uniform point on it, a
+// shadow ray from X). The reflected key light comes from the cosine
+// direction alone; the emissive term from both, combined by multiple
+// importance sampling with the power heuristic, so a small bright emitter is
+// found by the technique that finds it best. Emitter points obey the
+// definition too: nothing beyond r, nothing from a back face, nothing
+// hidden. E is the mean of the samples' estimates, the standard error
+// sqrt(sample variance / samples) per channel: the two parts of a sample
+// are summed first, so the error covers both techniques together. Without
+// emitters this is the plain cosine estimator E = pi * mean(L).
 struct IrradianceSample {
     glm::dvec3 irradiance{0.0};
     glm::dvec3 standard_error{0.0};
-    int rays = 0;
+    int rays = 0;     // rays from X: cosine directions and emitter shadow rays
+    int samples = 0;  // cosine directions (each with its emitter point, if any)
 };
 
+// Counted in rays from X: a cosine direction is one ray, an emitter point one
+// more when it passes the radius and facing tests (the others cost no ray).
+// Without emitters, rays and samples are the same.
 struct IrradianceRayBudget {
     int min_rays = 1024;
     int max_rays = 16384;
-    // Stop once every channel's standard error is below
+    // Stop, checked after each batch of samples once min_rays are spent, when
+    // every channel's standard error is below
     // max(target_absolute_error, target_relative_error * largest channel of E).
     double target_relative_error = 0.01;
     double target_absolute_error = 0.002;
-    int batch = 256;
+    int batch = 256;  // samples between checks
 };
 
 // The radiance the directly lit scene sends from `position` on the surface
