@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -39,7 +40,9 @@ struct Error {
 };
 
 // Over the viewport (guard band excluded) where the rasteriser and the ray
-// tracer see the same surface, as deepgi_compare_reference measures.
+// tracer see the same surface, as deepgi_compare_reference measures. The
+// estimate is clamped to [0, 1] as compose uses it (the solid-angle AV is
+// signed until then, sao.frag).
 Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
               const ReferenceImages& truth, int guard) {
     Error error;
@@ -49,13 +52,14 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
         for (int x = guard; x < traced.width - guard; ++x) {
             const float a = raster_depth.at(x, y), b = traced.at(x, y);
             if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
-            const double e = double(estimate.at(x, y)) - truth.ambient_visibility.at(x, y);
+            const float value = std::clamp(estimate.at(x, y), 0.0f, 1.0f);
+            const double e = double(value) - truth.ambient_visibility.at(x, y);
             sum_abs += std::abs(e);
             sum += e;
             ++error.pixels;
             if (truth.ambient_visibility.at(x, y) >= 0.9999f) {
                 ++error.open;
-                error.open_dark += estimate.at(x, y) < 0.99f;
+                error.open_dark += value < 0.99f;
             }
         }
     }
@@ -88,10 +92,13 @@ SceneErrors measure_scene(const std::string& name) {
         const RenderSettings settings = accuracy_settings(layers);
         Renderer renderer(scene, settings, loader);
         renderer.render(scene.default_camera);
-        const Error error = measure(renderer.read_pass_output("ao-blurred"),
-                                    renderer.read_pass_output("gbuffer-depth-layer0"), truth,
-                                    frame_layout(settings).guard);
+        const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+        const int guard = frame_layout(settings).guard;
+        const Error error = measure(renderer.read_pass_output("ao-blurred"), depth, truth, guard);
         (layers == 1 ? errors.one_layer : errors.two_layers) = error;
+        if (layers == 2)
+            errors.raw_two_layers =
+                measure(renderer.read_pass_output("ao-raw"), depth, truth, guard);
     }
     return errors;
 }
