@@ -3,6 +3,8 @@
 // (its taps rotated by this frame's step of the cycle) accumulated with the
 // reprojected history over whole rotation cycles, exactly as the radiosity
 // temporal filter does (history_reprojection.glsl, temporal_accumulation.glsl).
+// The solid-angle visibility is signed (sao.frag): the means here are linear,
+// so negative samples average with the rest and nothing clamps them.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 #include "history_reprojection.glsl"

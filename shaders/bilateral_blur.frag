@@ -11,6 +11,9 @@
 // fetch, a pow, the plane distance) costs several times a source fetch, so the
 // frame blurs the AO visibility and the radiosity E together instead of
 // computing every weight twice.
+//
+// The sources may be signed (the solid-angle AV, sao.frag): every weight is
+// non-negative, so the blur is a convex average and needs no clamp.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 #include "blur_kernel.glsl"

@@ -16,7 +16,7 @@ layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_norm
 layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
 layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
 layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
-layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ambient_visibility;  // blurred deep SAO
+layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ambient_visibility;  // blurred deep SAO, signed
 layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
 
 // x: AO, y: radiosity, z: environment; 0 leaves that term out (the
@@ -52,7 +52,9 @@ void main() {
   float confidence = clamp(gathered.a, 0.0, 1.0);
   vec3 environment = terms.z != 0 ? environment_irradiance(world_normal) : vec3(0.0);
   vec3 irradiance = gathered.rgb + environment * (1.0 - confidence);
-  float visibility = terms.x != 0 ? texelFetch(ambient_visibility, texel.xy, 0).r : 1.0;
+  // The solid-angle AV arrives signed (sao.frag): the clamp is applied here,
+  // after the blur and the temporal filter have averaged its noise.
+  float visibility = terms.x != 0 ? clamp(texelFetch(ambient_visibility, texel.xy, 0).r, 0.0, 1.0) : 1.0;
   out_radiance = texelFetch(direct_light, texel, 0).rgb + texelFetch(gbuffer_emissive, texel, 0).rgb +
                  albedo / pi * irradiance * visibility;
 }

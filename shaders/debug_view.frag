@@ -28,10 +28,11 @@ vec3 view_colour(ivec2 pixel, int view) {
   ivec3 texel = ivec3(pixel, layer);
   float stored_depth = texelFetch(gbuffer_depth, texel, 0).r;
   if (stored_depth <= 0.0) return vec3(0.0);
-  // Visibility is shown as it is (1 = unoccluded white), not tonemapped.
-  if (view == DEEPGI_VIEW_AO_RAW) return vec3(texelFetch(ao_raw, pixel, 0).r);
-  if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(texelFetch(ao_blurred, pixel, 0).r);
-  if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(texelFetch(ao_temporal, pixel, 0).r);
+  // Visibility is shown as compose uses it (1 = unoccluded white), not
+  // tonemapped: the solid-angle AV is signed until here, so clamp to [0, 1].
+  if (view == DEEPGI_VIEW_AO_RAW) return vec3(clamp(texelFetch(ao_raw, pixel, 0).r, 0.0, 1.0));
+  if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(clamp(texelFetch(ao_blurred, pixel, 0).r, 0.0, 1.0));
+  if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(clamp(texelFetch(ao_temporal, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_RADIOSITY_PREPARED)
     return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * frame.exposure);
   // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.

@@ -5,7 +5,8 @@
 //
 // Define AO_LAYERS 1 to read layer 0 only (for comparison); the default is 2.
 // The blur that follows keys on the depth pyramid and the G-buffer normal, so
-// the output is visibility alone.
+// the output is visibility alone: in [0, 1] for the published method, signed
+// (at most 1) for the solid-angle method, whose consumers clamp it.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 #include "pixel_rotation.glsl"
@@ -167,8 +168,18 @@ void main() {
     }
     sum += occlusion;
   }
-  float visibility = ao_method == DEEPGI_AO_METHOD_SOLID_ANGLE
-                         ? max(0.0, 1.0 - 2.0 * radius_squared / float(AO_NUM_TAPS) * sum)
-                         : max(0.0, 1.0 - sqrt(pi / float(AO_NUM_TAPS) * sum));
-  out_visibility = pow(visibility, intensity);
+  if (ao_method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
+    // Signed: the estimate of 1 - O is unbiased, but next to a crease its
+    // taps' weights 1 / |v|^2 make it heavy-tailed, and many pixels fall
+    // below 0. Clamping each pixel here would cut that tail before the blur
+    // and the temporal filter average it out, and bias the result bright, so
+    // the value stays signed through them (float targets) and is clamped to
+    // [0, 1] where it is consumed (compose, debug views). The exponent shapes
+    // the visible range only: pow() is undefined below 0, and a negative
+    // value passes unchanged, to be averaged with its neighbours.
+    float visibility = 1.0 - 2.0 * radius_squared / float(AO_NUM_TAPS) * sum;
+    out_visibility = visibility > 0.0 ? pow(visibility, intensity) : visibility;
+  } else {
+    out_visibility = pow(max(0.0, 1.0 - sqrt(pi / float(AO_NUM_TAPS) * sum)), intensity);
+  }
 }

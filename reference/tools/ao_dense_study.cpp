@@ -150,7 +150,8 @@ int run(int argc, char** argv) {
                     occlusion += best;
                 }
             }
-            const double av = std::max(0.0, 1.0 - occlusion / M_PI);
+            // Signed, as sao.frag leaves the solid-angle visibility.
+            const double av = 1.0 - occlusion / M_PI;
             const double error = av - truth.at(x, y);
             sum_abs += std::abs(error);
             sum += error;

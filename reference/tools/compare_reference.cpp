@@ -4,6 +4,16 @@
 // camera rays against the rasterised depth), then the deep SAO visibility
 // before and after the blur against the ray-traced AV, over the viewport
 // (guard band excluded) where both see a surface.
+//
+// The raw visibility is compared as the pass writes it (signed for the
+// solid-angle method: the estimator's own error); the blurred one as compose
+// uses it, clamped to [0, 1]. The blurred one is compared a second time
+// against the "visible truth": the reference AV plus the occlusion of
+// occluders that neither G-buffer layer sees (reference-ao-occlusion-split.pfm),
+// which is what a perfect estimator over both layers would reach, and once
+// more against what one over layer 0 alone would reach (plus the occlusion
+// only layer 1 sees). The difference between the lines is what the G-buffer
+// lacks; what remains against the visible truth is the estimator's error.
 #include "deepgi/image_io.hpp"
 
 #include <fmt/format.h>
@@ -47,8 +57,32 @@ int main(int argc, char** argv) {
             relative.size(), quantile(0.5), quantile(0.99), quantile(1.0), coverage_mismatch);
 
         const auto truth = deepgi::read_pfm(reference / "reference-ao-visibility.pfm");
-        for (const char* name : {"ao-raw", "ao-blurred"}) {
-            const auto estimate = deepgi::read_pfm(dump / (std::string(name) + ".pfm"));
+        const auto split = deepgi::read_pfm(reference / "reference-ao-occlusion-split.pfm");
+        if (split.channels != 3 || split.width != truth.width || split.height != truth.height) {
+            fmt::print(stderr, "reference-ao-occlusion-split.pfm is not 3 channels of {}x{}\n",
+                       truth.width, truth.height);
+            return 2;
+        }
+        // Occlusion that an estimator reading `layers` G-buffer layers has no
+        // surface for: split channel 2 (neither layer), plus channel 1 (only
+        // layer 1) for one layer.
+        auto unseen = [&](int x, int y, int layers) {
+            return double(split.at(x, y, 2)) + (layers == 1 ? split.at(x, y, 1) : 0.0f);
+        };
+        struct Comparison {
+            std::string label;
+            std::string output;
+            bool clamp;          // as compose uses it
+            int visible_layers;  // 0: against the full truth
+        };
+        const Comparison comparisons[] = {
+            {"ao-raw", "ao-raw", false, 0},
+            {"ao-blurred", "ao-blurred", true, 0},
+            {"ao-blurred vs visible truth (both layers)", "ao-blurred", true, 2},
+            {"ao-blurred vs visible truth (layer 0)", "ao-blurred", true, 1},
+        };
+        for (const Comparison& comparison : comparisons) {
+            const auto estimate = deepgi::read_pfm(dump / (comparison.output + ".pfm"));
             double sum_abs = 0.0, sum = 0.0;
             long long count = 0, open = 0, open_dark = 0;
             for (int y = guard; y < truth.height - guard; ++y) {
@@ -57,20 +91,28 @@ int main(int argc, char** argv) {
                     // would compare different points.
                     const float a = raster.at(x, y), b = traced.at(x, y);
                     if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
-                    const double error = double(estimate.at(x, y)) - truth.at(x, y);
+                    const double value = comparison.clamp
+                                             ? std::clamp(double(estimate.at(x, y)), 0.0, 1.0)
+                                             : double(estimate.at(x, y));
+                    const double target =
+                        truth.at(x, y) + (comparison.visible_layers > 0
+                                              ? unseen(x, y, comparison.visible_layers)
+                                              : 0.0);
+                    const double error = value - target;
                     sum_abs += std::abs(error);
                     sum += error;
                     ++count;
                     // Open surface: nothing within r in the truth.
                     if (truth.at(x, y) >= 0.9999f) {
                         ++open;
-                        if (estimate.at(x, y) < 0.99f) ++open_dark;
+                        if (value < 0.99) ++open_dark;
                     }
                 }
             }
             fmt::print(
-                "{}: {} pixels, MAE {:.4f}, bias {:+.4f}, open pixels below 0.99: {} of {}\n", name,
-                count, count ? sum_abs / count : 0.0, count ? sum / count : 0.0, open_dark, open);
+                "{}: {} pixels, MAE {:.4f}, bias {:+.4f}, open pixels below 0.99: {} of {}\n",
+                comparison.label, count, count ? sum_abs / count : 0.0, count ? sum / count : 0.0,
+                open_dark, open);
         }
     } catch (const std::exception& error) {
         fmt::print(stderr, "deepgi_compare_reference: {}\n", error.what());

@@ -1,6 +1,9 @@
 #!/bin/sh
 # Deep SAO against the ray-traced reference on the reference and built-in
-# scenes, one and two layers: MAE and bias before and after the blur.
+# scenes, one and two layers: MAE and bias before and after the blur, and
+# after the blur against the visible truth (deepgi_compare_reference).
+# Extra flags go to deepgi, e.g. --frames 9 for a static camera's whole
+# rotation cycle accumulated.
 # usage: measure_ao.sh BUILD_DIR WORK_DIR [SIZE] [extra deepgi flags...]
 set -eu
 build=$1; work=$2; size=${3:-320x180}
@@ -16,6 +19,6 @@ for scene in ref-crease ref-slab ref-board ref-bench cornell atrium warehouse; d
     "$build/apps/deepgi/deepgi" --headless --scene $scene --size $size --ao-layers $layers "$@" \
       --output "$work/$scene-$layers.png" --dump "$work/$scene-$layers"
     echo "== $scene, $layers layer(s)"
-    "$build/reference/deepgi_compare_reference" "$work/$scene-$layers" "$work/$scene-ref" $guard | tail -2
+    "$build/reference/deepgi_compare_reference" "$work/$scene-$layers" "$work/$scene-ref" $guard | grep '^ao-'
   done
 done

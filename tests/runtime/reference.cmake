@@ -10,6 +10,6 @@ catch_discover_tests(deepgi_reference_tests PROPERTIES LABELS runtime TIMEOUT 30
 # would repeat the context set-up, so the seven scenes run in one process.
 add_executable(deepgi_ao_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/ao_accuracy_test.cpp)
 target_link_libraries(deepgi_ao_accuracy_tests PRIVATE deepgi::reference spiral_catch_main)
-target_include_directories(deepgi_ao_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+target_include_directories(deepgi_ao_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/runtime/src)
 add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
 set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 600)

@@ -153,11 +153,18 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                 }
                 sum += occlusion;
             }
-            const float visibility = settings.method == deepgi::AoMethod::solid_angle
-                                         ? std::max(0.0f, 1.0f - 2.0f * radius_squared / n * sum)
-                                         : std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum));
-            result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                std::pow(visibility, settings.intensity);
+            float visibility;
+            if (settings.method == deepgi::AoMethod::solid_angle) {
+                // Signed: 1 minus an unbiased estimate of the obscurance,
+                // clamped only where it is consumed. The exponent applies to
+                // the positive range; below 0 the value is kept as it is.
+                const float estimate = 1.0f - 2.0f * radius_squared / n * sum;
+                visibility = estimate > 0.0f ? std::pow(estimate, settings.intensity) : estimate;
+            } else {
+                visibility = std::pow(std::max(0.0f, 1.0f - std::sqrt(3.14159265f / n * sum)),
+                                      settings.intensity);
+            }
+            result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] = visibility;
         }
     }
     return result;

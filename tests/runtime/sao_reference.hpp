@@ -27,7 +27,8 @@ struct SaoInputs {
     glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
 };
 
-// Ambient visibility per pixel (1 channel, the pyramid's level-0 size).
+// Ambient visibility per pixel (1 channel, the pyramid's level-0 size): in
+// [0, 1] for the published method, signed (at most 1) for the solid-angle one.
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings);

@@ -23,6 +23,7 @@ public:
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
         // Allocated together, so both pairs write the same slot each frame.
+        // Float, not UNORM: the solid-angle visibility is signed (sao.frag).
         HistoryPair& visibility =
             frame.allocate_history(visibility_history, GL_RG16F, width_, height_);
         HistoryPair& key = frame.allocate_history(key_history, GL_RGBA16F, width_, height_);

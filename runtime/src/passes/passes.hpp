@@ -58,7 +58,8 @@ BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count
 BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
                                     const BilateralBlurParameters& parameters = {});
 // One internal format per source: what the source holds (GL_R16F for AO,
-// GL_RGBA16F for radiosity); the blur itself does not care.
+// signed, GL_RGBA16F for radiosity); the blur itself does not care, as long
+// as the format is float (a linear average of signed values).
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
                            std::span<const GLenum> internal_formats);
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format);

@@ -19,6 +19,8 @@ public:
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
+        // A float format: the solid-angle visibility is signed until compose
+        // clamps it (sao.frag); a UNORM target would clamp it here.
         visibility_ = gl::create_texture_2d(GL_R16F, width_, height_);
         label_texture(visibility_, name(), "visibility");
         framebuffer_ = framebuffer_for(visibility_, "sao");
@@ -51,7 +53,7 @@ public:
 private:
     gl::Program one_layer_;
     gl::Program two_layers_;
-    gl::Texture visibility_;  // R16F ambient visibility
+    gl::Texture visibility_;  // R16F ambient visibility, signed (at most 1)
     gl::Framebuffer framebuffer_;
     int width_ = 0;
     int height_ = 0;
