@@ -109,9 +109,18 @@ struct Frame {
     FloatImage radiosity_blurred;
 };
 
+// The blurred AV as compose uses it: the solid-angle estimate is signed up
+// to there (sao.frag) and compose clamps it to [0, 1], as
+// deepgi_compare_reference does. Raw and temporal AV stay signed: they are
+// the estimator's stages, whose bias the report measures.
+FloatImage clamped_visibility(FloatImage image) {
+    for (float& v : image.pixels) v = std::clamp(v, 0.0f, 1.0f);
+    return image;
+}
+
 Frame read_frame(const Renderer& renderer) {
     return {renderer.read_pass_output("gbuffer-depth-layer0"), renderer.read_pass_output("ao-raw"),
-            renderer.read_pass_output("ao-blurred"),
+            clamped_visibility(renderer.read_pass_output("ao-blurred")),
             renderer.read_pass_output("radiosity-raw-layer0"),
             renderer.read_pass_output("radiosity-blurred")};
 }
