@@ -27,31 +27,58 @@ bool try_initialize(EGLDisplay display) {
     return eglInitialize(display, &major, &minor) == EGL_TRUE;
 }
 
-// Mesa offers a display with no window system at all; NVIDIA's driver offers
-// one per GPU device instead.
+// Whether an EGL device is a software rasteriser: Mesa marks its llvmpipe
+// device with EGL_MESA_device_software. Without EGL_EXT_device_query the
+// device cannot be asked, and counts as hardware.
+bool is_software_device(EGLDeviceEXT device) {
+    if (!has_client_extension("EGL_EXT_device_query")) return false;
+    const char* extensions = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
+    if (extensions == nullptr) return false;
+    return (std::string(" ") + extensions + " ").find(" EGL_MESA_device_software ") !=
+           std::string::npos;
+}
+
+std::vector<EGLDeviceEXT> query_devices() {
+    if (!has_client_extension("EGL_EXT_platform_device") ||
+        !has_client_extension("EGL_EXT_device_enumeration"))
+        return {};
+    EGLint count = 0;
+    if (!eglQueryDevicesEXT(0, nullptr, &count) || count <= 0) return {};
+    std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
+    if (!eglQueryDevicesEXT(count, devices.data(), &count)) return {};
+    devices.resize(static_cast<std::size_t>(count));
+    return devices;
+}
+
+EGLDisplay try_device(EGLDeviceEXT device) {
+    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+    return try_initialize(display) ? display : EGL_NO_DISPLAY;
+}
+
+// A GPU first: NVIDIA's driver offers one EGL device per GPU, and where it is
+// installed beside Mesa (through glvnd) Mesa's surfaceless display would
+// otherwise win and render on llvmpipe. Then Mesa's display with no window
+// system at all (llvmpipe on a machine without a GPU), then any device,
+// then the default display.
 EGLDisplay open_display() {
+    const std::vector<EGLDeviceEXT> devices = query_devices();
+    for (EGLDeviceEXT device : devices) {
+        if (is_software_device(device)) continue;
+        if (EGLDisplay display = try_device(device); display != EGL_NO_DISPLAY) return display;
+    }
     if (has_client_extension("EGL_MESA_platform_surfaceless")) {
         EGLDisplay display =
             eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (try_initialize(display)) return display;
     }
-    if (has_client_extension("EGL_EXT_platform_device") &&
-        has_client_extension("EGL_EXT_device_enumeration")) {
-        EGLint count = 0;
-        eglQueryDevicesEXT(0, nullptr, &count);
-        std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
-        if (count > 0 && eglQueryDevicesEXT(count, devices.data(), &count)) {
-            for (EGLDeviceEXT device : devices) {
-                EGLDisplay display =
-                    eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-                if (try_initialize(display)) return display;
-            }
-        }
+    for (EGLDeviceEXT device : devices) {
+        if (EGLDisplay display = try_device(device); display != EGL_NO_DISPLAY) return display;
     }
     EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
     if (try_initialize(display)) return display;
     throw GraphicsError(
-        "no EGL display could be initialised (tried surfaceless, device and default)");
+        "no EGL display could be initialised (tried GPU devices, surfaceless, software devices "
+        "and default)");
 }
 
 }  // namespace
