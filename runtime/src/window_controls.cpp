@@ -275,11 +275,11 @@ std::vector<ScriptCommand> parse_script(std::string_view text, std::string_view 
                 std::string names;
                 for (const auto& setting : numeric_settings())
                     names += std::string(setting.name) + ", ";
-                fail(
-                    fmt::format("unknown setting '{}' (known: {}generator, view, ao-method, radiosity-method, "
-                                "light-intensity, light-colour, light-yaw, light-pitch, "
-                                "light-position)",
-                                command.name, names));
+                fail(fmt::format(
+                    "unknown setting '{}' (known: {}generator, view, ao-method, radiosity-method, "
+                    "light-intensity, light-colour, light-yaw, light-pitch, "
+                    "light-position)",
+                    command.name, names));
             }
             // Checked now against default settings and a spot light, so a bad
             // value stops the run before the window opens.

@@ -91,10 +91,9 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
         Renderer renderer(scene, settings, loader);
         // One whole rotation cycle: the filtered E is the mean of its 8 gathers.
         for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
-        errors[method == RadiosityMethod::area ? 0 : 1] =
-            measure(renderer.read_pass_output("radiosity-irradiance-layer0"),
-                    renderer.read_pass_output("gbuffer-depth-layer0"), truth,
-                    frame_layout(settings).guard);
+        errors[method == RadiosityMethod::area ? 0 : 1] = measure(
+            renderer.read_pass_output("radiosity-irradiance-layer0"),
+            renderer.read_pass_output("gbuffer-depth-layer0"), truth, frame_layout(settings).guard);
     }
     const Error& area = errors[0];
     const Error& published = errors[1];

@@ -146,12 +146,12 @@ struct AoSettings {
 // Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
 // and spiral turns come from the generated radiosity_taps.glsl.
 struct RadiositySettings {
-    float radius = 1.0f;      // world-space gather radius (m)
-    float boost = 0.0f;       // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
+    float radius = 1.0f;  // world-space gather radius (m)
+    float boost = 0.0f;   // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
     // Largest contribution of one sample, per channel: B(Y) cos(theta_X) times
     // the sample's area weight (area method) or alone (published method).
     float tap_clamp = 16.0f;
-    float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
+    float rho_prop = 0.5f;  // share of last frame's indirect light fed into the next gather
     float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
     int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
     RadiosityMethod method = RadiosityMethod::area;
