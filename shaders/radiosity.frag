@@ -17,13 +17,13 @@
 //   E(X) = int_hemisphere L(y) cos(theta_X) dw
 // over the surfaces the G-buffer holds, as sao.frag's solid-angle AO does:
 // dw = cos(theta_Y) dA / |v|^2, the patch behind a pixel at linear depth z_Y
-// has the area (s z_Y)^2 cos(phi) / cos(alpha_Y) (s: pixel side at unit
-// depth, phi: the pixel's angle off the optical axis, alpha_Y: between n_Y
-// and the view ray), and tap i, at radius alpha_i R (R = r / (s z_X) pixels,
+// has the area (s z_Y)^2 cos(phi) / cos(view_Y) (s: pixel side at unit
+// depth, phi: the pixel's angle off the optical axis, view_Y: between n_Y
+// and the direction to the eye), and tap i, at radius alpha_i R (R = r / (s z_X) pixels,
 // uniform in radius), stands for 2 pi alpha_i R^2 / N pixels. So sample (i, j)
 // covers the solid angle
 //   W_ij = 2 pi / N * w_ij,
-//   w_ij = alpha_i (z_Y / z_X)^2 cos(phi) cos(theta_Y) r^2 / (|v|^2 cos(alpha_Y))
+//   w_ij = alpha_i (z_Y / z_X)^2 cos(phi) cos(theta_Y) r^2 / (|v|^2 cos(view_Y))
 // and
 //   E(X) ~= 2 pi / N * sum over used samples of min(B(Y) cos(theta_X) w_ij, clamp)
 //   c(X)  = min(1, 2 / N * sum over used samples of cos(theta_X) w_ij)
@@ -63,8 +63,8 @@ layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
 const float two_pi = 6.2831853;
 
-// w_ij above without r^2 (applied once), for a sample that passed the facing
-// tests. A patch seen edge-on stands for unbounded area: its weight is
+// w_ij above without its factor r^2 (the caller's), for a sample that passed
+// the facing tests. A patch seen edge-on stands for unbounded area: its weight is
 // clamped as sao.frag clamps it.
 float area_weight(vec3 tap_position, vec3 tap_normal, float vv, float cos_y, float depth_ratio_squared,
                   float alpha) {
