@@ -3,17 +3,43 @@
 // `layer`): irradiance E at X from the taps of the generated
 // radiosity_taps.glsl, each tap reading both depth layers.
 //
-//   E(X) = 2*pi/M * sum over used samples of min(B(Y) * (w.n_X), clamp)
-//   w = (Y - X) / |Y - X|
-//
 // A sample (tap i, layer j) is used when Y lies within the world-space radius,
-// X faces it (w.n_X > 0) and it faces X (-w.n_Y > 0); M counts the used
-// samples and the confidence is M / (taps * layers). B(Y) is the outgoing
-// radiance radiosity_prepare.comp wrote (direct light, last frame's bounce,
-// boost and emissive), n_Y its normal and Y is rebuilt from the depth
-// pyramid. Tap i reads MIP level m_i = clamp(floor(log2(alpha_i R / q)), 0,
-// max) of all three, as SAO does: the rotated-grid texel is one level-0
-// pixel, and Y is rebuilt at that pixel's centre.
+// X faces it (w.n_X > 0) and it faces X (-w.n_Y > 0), w = (Y - X) / |Y - X|.
+// B(Y) is the outgoing radiance radiosity_prepare.comp wrote (direct light,
+// last frame's bounce, boost and emissive), n_Y its normal and Y is rebuilt
+// from the depth pyramid. Tap i reads MIP level
+// m_i = clamp(floor(log2(alpha_i R / q)), 0, max) of all three, as SAO does:
+// the rotated-grid texel is one level-0 pixel, and Y is rebuilt at that
+// pixel's centre.
+//
+// DEEPGI_RADIOSITY_METHOD_AREA estimates the reference's one-bounce
+// irradiance (reference.hpp)
+//   E(X) = int_hemisphere L(y) cos(theta_X) dw
+// over the surfaces the G-buffer holds, as sao.frag's solid-angle AO does:
+// dw = cos(theta_Y) dA / |v|^2, the patch behind a pixel at linear depth z_Y
+// has the area (s z_Y)^2 cos(phi) / cos(view_Y) (s: pixel side at unit
+// depth, phi: the pixel's angle off the optical axis, view_Y: between n_Y
+// and the direction to the eye), and tap i, at radius alpha_i R (R = r / (s z_X) pixels,
+// uniform in radius), stands for 2 pi alpha_i R^2 / N pixels. So sample (i, j)
+// covers the solid angle
+//   W_ij = 2 pi / N * w_ij,
+//   w_ij = alpha_i (z_Y / z_X)^2 cos(phi) cos(theta_Y) r^2 / (|v|^2 cos(view_Y))
+// and
+//   E(X) ~= 2 pi / N * sum over used samples of min(B(Y) cos(theta_X) w_ij, clamp)
+//   c(X)  = min(1, 2 / N * sum over used samples of cos(theta_X) w_ij)
+// B is radiance (albedo / pi * direct irradiance, as the reference's L), so no
+// factor of pi enters. Layers are summed, not maxed: both are surfaces that
+// send light. c is the share of the cosine-weighted hemisphere the samples
+// covered (1 / pi * sum W cos), the part compose does not fill with the
+// environment. Samples off the buffer, on sky or beyond r add nothing (the
+// reference's L is 0 there too), rather than being renormalised away.
+//
+// DEEPGI_RADIOSITY_METHOD_PUBLISHED (design.md, for comparison):
+//   E(X) = 2 pi / M * sum over used samples of min(B(Y) cos(theta_X), clamp)
+//   c(X) = M / (taps * layers)
+// M the used samples. It is not an estimate of the integral: it is 2 pi times
+// the mean of B cos(theta_X) over the samples that found a surface, whatever
+// solid angle each of them stands for.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 #include "pixel_rotation.glsl"
@@ -31,10 +57,22 @@ layout(location = DEEPGI_UNIFORM_RADIOSITY_LAYERS) uniform int gather_layers;  /
 // x: q (px), the tap distance at which taps move one MIP level down; y: the
 // deepest level (float-encoded int).
 layout(location = DEEPGI_UNIFORM_RADIOSITY_MIP) uniform vec2 mip_parameters;
+layout(location = DEEPGI_UNIFORM_RADIOSITY_METHOD) uniform int radiosity_method;  // DEEPGI_RADIOSITY_METHOD_*
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
 const float two_pi = 6.2831853;
+
+// w_ij above without its factor r^2 (the caller's), for a sample that passed
+// the facing tests. A patch seen edge-on stands for unbounded area: its weight is
+// clamped as sao.frag clamps it.
+float area_weight(vec3 tap_position, vec3 tap_normal, float vv, float cos_y, float depth_ratio_squared,
+                  float alpha) {
+  vec3 view_ray = normalize(tap_position);
+  float cos_phi = -view_ray.z;
+  float cos_view = max(dot(tap_normal, -view_ray), 0.1);
+  return alpha * depth_ratio_squared * cos_phi * cos_y / (vv * cos_view);
+}
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -58,7 +96,9 @@ void main() {
   mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);
 
+  bool area = radiosity_method == DEEPGI_RADIOSITY_METHOD_AREA;
   vec3 sum = vec3(0.0);
+  float coverage = 0.0;  // area: sum of cos(theta_X) w_ij (without r^2)
   int used = 0;
   for (int i = 0; i < RADIOSITY_NUM_TAPS; ++i) {
     vec2 offset = clamp((rotation * RADIOSITY_TAP_OFFSETS[i]) * radius_pixels, vec2(-65536.0), vec2(65536.0));
@@ -74,18 +114,31 @@ void main() {
     for (int j = 0; j < gather_layers; ++j) {
       float tap_depth = j == 0 ? tap_depths.r : tap_depths.g;
       if (tap_depth <= 0.0) continue;
-      vec3 v = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale) - position;
+      vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
+      vec3 v = y - position;
       float vv = dot(v, v);
       if (vv >= radius_squared || vv <= 0.0) continue;
       vec3 w = v * inversesqrt(vv);
       float cos_x = dot(w, normal);
       if (cos_x <= 0.0) continue;
       ivec3 at = ivec3(texel, j);
-      float cos_y = -dot(w, decode_normal(texelFetch(prepared_normal, at, level).xy));
+      vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
+      float cos_y = -dot(w, tap_normal);
       if (cos_y <= 0.0) continue;
-      sum += min(texelFetch(prepared_radiance, at, level).rgb * cos_x, vec3(tap_clamp));
+      float weight = 1.0;
+      if (area) {
+        float ratio = tap_depth / depth;
+        weight = radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, RADIOSITY_TAP_ALPHAS[i]);
+        coverage += cos_x * weight;
+      }
+      sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(tap_clamp));
       ++used;
     }
+  }
+  if (area) {
+    float scale = two_pi / float(RADIOSITY_NUM_TAPS);
+    out_irradiance = vec4(sum * scale, min(coverage * (2.0 / float(RADIOSITY_NUM_TAPS)), 1.0));
+    return;
   }
   float samples = float(RADIOSITY_NUM_TAPS * gather_layers);
   vec3 irradiance = used > 0 ? sum * (two_pi / float(used)) : vec3(0.0);

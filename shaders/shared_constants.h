@@ -85,6 +85,7 @@
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
+#define DEEPGI_UNIFORM_RADIOSITY_METHOD 37      // int: DEEPGI_RADIOSITY_METHOD_*
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

@@ -30,10 +30,13 @@
 #define DEEPGI_AO_METHOD_PUBLISHED 0    // 1 - sqrt(pi/N * sum AO(X, Y))
 #define DEEPGI_AO_METHOD_SOLID_ANGLE 1  // the reference's integral over the seen surface
 
+#define DEEPGI_RADIOSITY_METHOD_PUBLISHED 0  // 2 pi / M * sum B cos_x over the M used samples
+#define DEEPGI_RADIOSITY_METHOD_AREA 1       // the reference's integral over the seen surface
+
 #define DEEPGI_VIEW_AO_RAW 11
 #define DEEPGI_VIEW_AO_BLURRED 12
 // Deep radiosity: E (tonemapped) raw per layer and blurred, and the confidence
-// (fraction of taps used, grey).
+// (grey: the share of the hemisphere the taps covered, or of taps used).
 #define DEEPGI_VIEW_RADIOSITY_LAYER0 13
 #define DEEPGI_VIEW_RADIOSITY_LAYER1 14
 #define DEEPGI_VIEW_RADIOSITY_BLURRED 15

@@ -57,6 +57,7 @@ struct Options {
     deepgi::RadiositySettings radiosity;
     deepgi::BlurSettings blur;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
+    std::string radiosity_method{deepgi::to_string(deepgi::RadiositySettings{}.method)};
     std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
     std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
     int shadow_map_size = deepgi::RenderSettings{}.shadow_map_size;
@@ -108,6 +109,8 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.blur = options.blur;
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
+    settings.radiosity.method =
+        deepgi::parse_radiosity_method("--radiosity-method", options.radiosity_method);
     settings.gl_debug = options.gl_debug;
     settings.shadow_map_size = options.shadow_map_size;
     settings.ao.enabled = !options.no_ao;
@@ -278,11 +281,16 @@ int main(int argc, char** argv) {
     app.add_option("--radiosity-radius", options.radiosity.radius,
                    "Deep radiosity: world-space gather radius (m)")
         ->capture_default_str();
+    app.add_option("--radiosity-method", options.radiosity_method,
+                   fmt::format("Deep radiosity estimator: {} (area is the reference's "
+                               "irradiance integral, published is 2 pi / M * sum B cos)",
+                               deepgi::enum_name_list<deepgi::RadiosityMethod>()))
+        ->capture_default_str();
     app.add_option("--radiosity-boost", options.radiosity.boost,
                    "Deep radiosity: colour boost in [0, 1] (0: energy conserving)")
         ->capture_default_str();
     app.add_option("--radiosity-clamp", options.radiosity.tap_clamp,
-                   "Deep radiosity: largest contribution of one tap")
+                   "Deep radiosity: largest contribution of one sample, per channel")
         ->capture_default_str();
     app.add_option("--rho-prop", options.radiosity.rho_prop,
                    "Deep radiosity: share of last frame's indirect light in the next gather, "

@@ -94,9 +94,12 @@ int main(int argc, char** argv) {
             "reference: {} pixels, mean E {:.4f}, mean standard error {:.4f}; gather without a "
             "sample at {} pixels\n",
             count, truth_sum / n, truth_error_sum / n, empty);
-        // The last row scales the filtered E by the gather's confidence
-        // (used samples / all samples): the gather normalised by every
-        // sample instead of the used ones, the part of E that compose keeps.
+        // The last row scales the filtered E by the gather's confidence. With
+        // --radiosity-method published (confidence: used samples / all
+        // samples) that is the gather normalised by every sample instead of
+        // the used ones. With the area method E is already the integral and
+        // the confidence the covered share of the hemisphere, so the row
+        // means nothing there.
         struct Row {
             const char* label;
             const char* file;

@@ -286,6 +286,9 @@ void Renderer::set_settings(const RenderSettings& settings) {
                             settings.ao.max_mip_level != state.settings.ao.max_mip_level;
     const bool retime = settings.timing != state.settings.timing;
     const bool layers_changed = settings.radiosity.layers != state.settings.radiosity.layers;
+    // The estimators' E and confidence mean different things (docs/radiosity.md):
+    // history of one would take cycles to fade from the other.
+    const bool method_changed = settings.radiosity.method != state.settings.radiosity.method;
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     state.settings = settings;
     if (reallocate) resize_passes(state);
@@ -295,6 +298,9 @@ void Renderer::set_settings(const RenderSettings& settings) {
     } else if (layers_changed) {
         state.frame.invalidate_history(
             fmt::format("radiosity layers changed to {}", settings.radiosity.layers));
+    } else if (method_changed) {
+        state.frame.invalidate_history(
+            fmt::format("radiosity method changed to {}", to_string(settings.radiosity.method)));
     }
     if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));
 }

@@ -358,8 +358,10 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         enum_combo("method (M)", wanted.ao.method);
         numeric_sliders("ao", wanted);
     }
-    if (ImGui::CollapsingHeader("radiosity and temporal filter", ImGuiTreeNodeFlags_DefaultOpen))
+    if (ImGui::CollapsingHeader("radiosity and temporal filter", ImGuiTreeNodeFlags_DefaultOpen)) {
+        enum_combo("radiosity method", wanted.radiosity.method);
         numeric_sliders("radiosity", wanted);
+    }
     if (ImGui::CollapsingHeader("bilateral blur (AO and radiosity)"))
         numeric_sliders("blur", wanted);
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -51,6 +51,11 @@ constexpr std::array<EnumName<AoMethod>, 2> ao_method_table = {{
     {AoMethod::published, "published"},
 }};
 
+constexpr std::array<EnumName<RadiosityMethod>, 2> radiosity_method_table = {{
+    {RadiosityMethod::area, "area"},
+    {RadiosityMethod::published, "published"},
+}};
+
 template <class Enum>
 Enum parse_or_throw(std::string_view option, std::string_view text) {
     if (auto value = parse_enum<Enum>(text)) return *value;
@@ -87,6 +92,9 @@ std::span<const EnumName<TimingMode>> enum_names(TimingMode) {
 std::span<const EnumName<AoMethod>> enum_names(AoMethod) {
     return ao_method_table;
 }
+std::span<const EnumName<RadiosityMethod>> enum_names(RadiosityMethod) {
+    return radiosity_method_table;
+}
 
 Generator parse_generator(std::string_view option, std::string_view text) {
     return parse_or_throw<Generator>(option, text);
@@ -99,6 +107,9 @@ TimingMode parse_timing_mode(std::string_view option, std::string_view text) {
 }
 AoMethod parse_ao_method(std::string_view option, std::string_view text) {
     return parse_or_throw<AoMethod>(option, text);
+}
+RadiosityMethod parse_radiosity_method(std::string_view option, std::string_view text) {
+    return parse_or_throw<RadiosityMethod>(option, text);
 }
 
 void validate(const RenderSettings& settings) {
@@ -116,6 +127,7 @@ void validate(const RenderSettings& settings) {
     check_enum("--view", settings.view);
     check_enum("--timing", settings.timing);
     check_enum("--ao-method", settings.ao.method);
+    check_enum("--radiosity-method", settings.radiosity.method);
     if (!finite_at_least(settings.min_separation, 0.0f))
         throw InputError("--min-separation must be a finite number of metres >= 0");
     if (!finite_positive(settings.exposure))

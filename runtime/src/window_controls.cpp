@@ -88,7 +88,7 @@ bool is_light_setting(std::string_view name) {
 
 bool is_known_setting(std::string_view name) {
     return find_numeric_setting(name) != nullptr || name == "generator" || name == "view" ||
-           name == "ao-method" || is_light_setting(name);
+           name == "ao-method" || name == "radiosity-method" || is_light_setting(name);
 }
 
 }  // namespace
@@ -205,6 +205,8 @@ void apply_set_command(const std::string& name, const std::vector<std::string>& 
         settings.view = parse_debug_view("view", values[0]);
     } else if (name == "ao-method") {
         settings.ao.method = parse_ao_method("ao-method", values[0]);
+    } else if (name == "radiosity-method") {
+        settings.radiosity.method = parse_radiosity_method("radiosity-method", values[0]);
     } else if (name == "light-intensity") {
         const float value = parse_float(name, values[0]);
         if (value < 0.0f) throw InputError("light-intensity must be >= 0");
@@ -273,11 +275,11 @@ std::vector<ScriptCommand> parse_script(std::string_view text, std::string_view 
                 std::string names;
                 for (const auto& setting : numeric_settings())
                     names += std::string(setting.name) + ", ";
-                fail(
-                    fmt::format("unknown setting '{}' (known: {}generator, view, ao-method, "
-                                "light-intensity, light-colour, light-yaw, light-pitch, "
-                                "light-position)",
-                                command.name, names));
+                fail(fmt::format(
+                    "unknown setting '{}' (known: {}generator, view, ao-method, radiosity-method, "
+                    "light-intensity, light-colour, light-yaw, light-pitch, "
+                    "light-position)",
+                    command.name, names));
             }
             // Checked now against default settings and a spot light, so a bad
             // value stops the run before the window opens.

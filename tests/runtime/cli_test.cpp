@@ -71,6 +71,8 @@ TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtim
     require_one_line_error("--headless --size 160x90 --no-such-option", "no-such-option");
     require_one_line_error("--headless --size 160x90 --frames two", "--frames");
     require_one_line_error("--headless --size 160x90 --view sideways", "--view");
+    require_one_line_error("--headless --size 160x90 --radiosity-method mean",
+                           "--radiosity-method");
 }
 
 TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][cli]") {

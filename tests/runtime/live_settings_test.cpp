@@ -93,7 +93,7 @@ TEST_CASE("live settings: bad light values are refused and the light is kept",
     CHECK(renderer.key_light().direction == scene.key_light.direction);
 }
 
-TEST_CASE("live settings: only a change of the radiosity layers drops history",
+TEST_CASE("live settings: only a change of the radiosity layers or method drops history",
           "[runtime][window]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
@@ -112,6 +112,13 @@ TEST_CASE("live settings: only a change of the radiosity layers drops history",
     renderer.set_settings(settings);
     CHECK_FALSE(renderer.history_valid());
     CHECK(renderer.history_log().back().find("radiosity layers changed to 1") != std::string::npos);
+    renderer.render(scene.default_camera);
+    REQUIRE(renderer.history_valid());
+    settings.radiosity.method = RadiosityMethod::published;
+    renderer.set_settings(settings);
+    CHECK_FALSE(renderer.history_valid());
+    CHECK(renderer.history_log().back().find("radiosity method changed to published") !=
+          std::string::npos);
 }
 
 TEST_CASE("live settings: an edited blur filters as a renderer built with it",

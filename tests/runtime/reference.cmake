@@ -13,3 +13,11 @@ target_link_libraries(deepgi_ao_accuracy_tests PRIVATE deepgi::reference spiral_
 target_include_directories(deepgi_ao_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/runtime/src)
 add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
 set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 600)
+
+# Deep radiosity against the reference's one-bounce irradiance (headless EGL
+# and Embree, one process for its scenes).
+add_executable(deepgi_radiosity_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/radiosity_accuracy_test.cpp)
+target_link_libraries(deepgi_radiosity_accuracy_tests PRIVATE deepgi::reference spiral_catch_main)
+target_include_directories(deepgi_radiosity_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+add_test(NAME deepgi_radiosity_accuracy COMMAND deepgi_radiosity_accuracy_tests "[radiosity-accuracy]")
+set_tests_properties(deepgi_radiosity_accuracy PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600)

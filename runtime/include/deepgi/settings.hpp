@@ -38,7 +38,7 @@ enum class DebugView {
     radiosity_layer0 = DEEPGI_VIEW_RADIOSITY_LAYER0,      // gathered E of layer 0, tonemapped
     radiosity_layer1 = DEEPGI_VIEW_RADIOSITY_LAYER1,      // gathered E of layer 1, tonemapped
     radiosity_blurred = DEEPGI_VIEW_RADIOSITY_BLURRED,    // layer 0's E after the bilateral blur
-    radiosity_confidence = DEEPGI_VIEW_RADIOSITY_CONFIDENCE,  // fraction of taps used
+    radiosity_confidence = DEEPGI_VIEW_RADIOSITY_CONFIDENCE,  // hemisphere covered (or taps used)
 };
 
 enum class TimingMode { automatic, cpu, gpu };
@@ -47,6 +47,12 @@ enum class TimingMode { automatic, cpu, gpu };
 enum class AoMethod {
     published = DEEPGI_AO_METHOD_PUBLISHED,      // 1 - sqrt(...), kept for comparison
     solid_angle = DEEPGI_AO_METHOD_SOLID_ANGLE,  // the reference's integral over the seen surface
+};
+
+// Deep radiosity estimators (docs/radiosity.md).
+enum class RadiosityMethod {
+    published = DEEPGI_RADIOSITY_METHOD_PUBLISHED,  // 2 pi / M * sum B cos, kept for comparison
+    area = DEEPGI_RADIOSITY_METHOD_AREA,  // the reference's integral over the seen surface
 };
 
 // One row of an enum's name table.
@@ -61,6 +67,7 @@ std::span<const EnumName<Generator>> enum_names(Generator);
 std::span<const EnumName<DebugView>> enum_names(DebugView);
 std::span<const EnumName<TimingMode>> enum_names(TimingMode);
 std::span<const EnumName<AoMethod>> enum_names(AoMethod);
+std::span<const EnumName<RadiosityMethod>> enum_names(RadiosityMethod);
 
 // "?" for a value outside the table.
 template <class Enum>
@@ -90,6 +97,7 @@ Generator parse_generator(std::string_view option, std::string_view text);
 DebugView parse_debug_view(std::string_view option, std::string_view text);
 TimingMode parse_timing_mode(std::string_view option, std::string_view text);
 AoMethod parse_ao_method(std::string_view option, std::string_view text);
+RadiosityMethod parse_radiosity_method(std::string_view option, std::string_view text);
 
 // Limits the validation enforces, exported so the CLI help and the ImGui
 // sliders show the same ranges.
@@ -138,12 +146,15 @@ struct AoSettings {
 // Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
 // and spiral turns come from the generated radiosity_taps.glsl.
 struct RadiositySettings {
-    float radius = 1.0f;      // world-space gather radius (m)
-    float boost = 0.0f;       // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
-    float tap_clamp = 16.0f;  // largest contribution B(Y) * cos of one sample, per channel
-    float rho_prop = 0.5f;    // share of last frame's indirect light fed into the next gather
+    float radius = 1.0f;  // world-space gather radius (m)
+    float boost = 0.0f;   // 0: boost(rho) = 1 (energy conserving); 1: the saturation boost
+    // Largest contribution of one sample, per channel: B(Y) cos(theta_X) times
+    // the sample's area weight (area method) or alone (published method).
+    float tap_clamp = 16.0f;
+    float rho_prop = 0.5f;  // share of last frame's indirect light fed into the next gather
     float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
     int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
+    RadiosityMethod method = RadiosityMethod::area;
     // false: compose takes E and its confidence as 0, so the environment term
     // fills everywhere (the passes still run for their debug views).
     bool enabled = true;

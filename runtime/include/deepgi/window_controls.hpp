@@ -69,7 +69,7 @@ float fly_step(float frame_seconds, float metres_per_second);
 // ---- --script FILE ----
 // One command a line; '#' starts a comment; blank lines are ignored:
 //   frame N set NAME VALUE...   a numeric setting (numeric_settings() names),
-//                               generator, view, ao-method, or the light:
+//                               generator, view, ao-method, radiosity-method, or the light:
 //                               light-intensity I, light-colour R G B,
 //                               light-yaw DEG, light-pitch DEG,
 //                               light-position X Y Z (spot lights)

@@ -69,6 +69,8 @@ public:
         glProgramUniform4f(gather, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, settings.radius, 0.0f,
                            settings.tap_clamp, 0.0f);
         glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_LAYERS, settings.layers);
+        glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_METHOD,
+                           static_cast<int>(settings.method));
         // The prepare pass builds as many levels as the depth pyramid.
         glProgramUniform2f(gather, DEEPGI_UNIFORM_RADIOSITY_MIP, frame.settings->ao.q,
                            float(frame.integer("depth_pyramid.max_level")));
