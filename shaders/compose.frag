@@ -1,13 +1,18 @@
 #version 450 core
 // Outgoing radiance of layer 0 (design.md 3, step 8):
 //
-//   L = direct + albedo/pi * (E * c + env(n) * (1 - c)) * AV + emissive
+//   L = direct + albedo/pi * (E + env(n) * (1 - c)) * AV + emissive
 //
-// E is the blurred deep radiosity irradiance and c its confidence (the
-// fraction of taps used). Where few taps found a surface (open sky, the
-// buffer's edge) the environment fills in: an analytic sky for scenes with a
-// sky (background not black) and the constant ambient otherwise. Both are
-// irradiance, so the Lambertian 1/pi turns them into radiance.
+// E is the blurred deep radiosity irradiance and c its confidence. With the
+// area estimator (radiosity.frag) E already counts only the part of the
+// hemisphere its samples covered and c is that covered share, so E is not
+// scaled by c: the environment fills the uncovered rest (open sky, the
+// buffer's edge). design.md writes E * c; this code never did, and the
+// published normalisation (kept for comparison) is composed the same way,
+// without the scaling. The environment is an
+// analytic sky for scenes with a sky (background not black) and the constant
+// ambient otherwise. Both are irradiance, so the Lambertian 1/pi turns them
+// into radiance.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
