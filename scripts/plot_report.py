@@ -315,6 +315,14 @@ def stability_section(directory, add):
                    else ".") + "\n")
 
 
+def rays_text(rays):
+    """The reference's ray budget as the summary states it."""
+    if rays == 0:
+        return ("rays per pixel until the standard error is below the targets of "
+                "`deepgi reference`")
+    return f"{rays} rays per pixel"
+
+
 def bias_trend(truth):
     """What the radiosity bias does as N grows, from the first and last N."""
     if len(truth) < 2:
@@ -340,7 +348,7 @@ def summary(directory, rows, info, discrepancy_series, images):
     add = lines.append
     add("# Deep SAO: speed against error\n")
     add(f"{info.get('renderer', '?')}, {info.get('width')}x{info.get('height')} (guard band "
-        f"{info.get('guard')} px), reference {info.get('rays')} rays per pixel, converged = "
+        f"{info.get('guard')} px), reference {rays_text(info.get('rays'))}, converged = "
         f"optimal tau at {info.get('converged_taps')} taps, timing: {info.get('timing')}, "
         f"median of {info.get('frames')} frames. Scenes: {', '.join(scenes)}. "
         f"Run time {info.get('seconds', 0):.0f} s.\n")

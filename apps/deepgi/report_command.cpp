@@ -93,7 +93,9 @@ int run_report_command(int argc, char** argv) {
         ->delimiter(',');
     app.add_option("--layers", report.layers, "Layer counts (1, 2)")->delimiter(',');
     app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT (guard band added)");
-    app.add_option("--rays", report.rays, "Reference rays per pixel");
+    app.add_option("--rays", report.rays,
+                   "Reference rays per pixel; 0: as many as `deepgi reference` traces for its "
+                   "standard-error targets");
     app.add_option("--output", options.output, "Directory for the report");
     app.add_option("--converged-taps", report.converged_taps,
                    "Taps of the converged screen-space result");

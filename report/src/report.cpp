@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 namespace fs = std::filesystem;
 
@@ -385,8 +386,8 @@ void validate(const ReportOptions& options) {
     if (options.width < 8 || options.height < 8 || options.width > 4096 || options.height > 4096)
         throw InputError(fmt::format("--size {}x{} is out of range (8 to 4096 per side)",
                                      options.width, options.height));
-    if (options.rays < 1 || options.rays > 1 << 20)
-        throw InputError(fmt::format("--rays {} is out of range (1 to 1048576)", options.rays));
+    if (options.rays < 0 || options.rays > 1 << 20)
+        throw InputError(fmt::format("--rays {} is out of range (0 to 1048576)", options.rays));
     if (options.converged_taps < 1 || options.converged_taps > 1024)
         throw InputError(
             fmt::format("--converged-taps {} is out of range (1 to 1024)", options.converged_taps));
@@ -458,18 +459,23 @@ ReportResult run_report(const ReportOptions& options) {
         // The ray-traced truth on the same pixel grid.
         ReferenceSettings reference;
         reference.render = settings;
-        reference.rays.min_rays = options.rays;
-        reference.rays.max_rays = options.rays;
-        reference.rays.target_error = 0.0;
-        // One-bounce irradiance with the same fixed ray count, within the
-        // gather's radius: the rows compare the first frame after a cut, which
-        // has no bounce history, so one bounce is what it estimates.
+        // A fixed ray count per pixel, or with --rays 0 the budgets of
+        // `deepgi reference` (rays until the standard error is below their
+        // targets), so that the truth's own noise stays out of the error.
+        if (options.rays > 0) {
+            reference.rays.min_rays = options.rays;
+            reference.rays.max_rays = options.rays;
+            reference.rays.target_error = 0.0;
+            reference.irradiance_rays.min_rays = options.rays;
+            reference.irradiance_rays.max_rays = options.rays;
+            reference.irradiance_rays.target_relative_error = 0.0;
+            reference.irradiance_rays.target_absolute_error = 0.0;
+        }
+        // One-bounce irradiance within the gather's radius: the rows compare
+        // the first frame after a cut, which has no bounce history, so one
+        // bounce is what it estimates.
         reference.irradiance = true;
         reference.radiosity_radius = settings.radiosity.radius;
-        reference.irradiance_rays.min_rays = options.rays;
-        reference.irradiance_rays.max_rays = options.rays;
-        reference.irradiance_rays.target_relative_error = 0.0;
-        reference.irradiance_rays.target_absolute_error = 0.0;
         reference.seed = options.seed;
         reference.threads = options.threads;
         const auto reference_start = std::chrono::steady_clock::now();
@@ -477,7 +483,8 @@ ReportResult run_report(const ReportOptions& options) {
         const ReferenceImages truth = render_reference(rays, camera, reference);
         const std::optional<FloatImage> truth_irradiance = reference_irradiance(truth);
         log(fmt::format(
-            "{}: reference, {} rays per pixel, {:.1f} s", scene_name, options.rays,
+            "{}: reference, {} rays per pixel, {:.1f} s", scene_name,
+            options.rays > 0 ? std::to_string(options.rays) : std::string("adaptive"),
             std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start)
                 .count()));
 

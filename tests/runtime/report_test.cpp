@@ -294,7 +294,7 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
     const std::string program = DEEPGI_EXECUTABLE;
     for (const std::string& arguments :
          {std::string("--taps 0"), std::string("--taps 4,x"), std::string("--patterns fibonacci"),
-          std::string("--layers 3"), std::string("--size 10by10"), std::string("--rays 0"),
+          std::string("--layers 3"), std::string("--size 10by10"), std::string("--rays -1"),
           std::string("--float-max-n -1"), std::string("--float-max-n 5000"),
           std::string("--scenes no-such-scene")}) {
         const auto run = spiral::test::run_command(

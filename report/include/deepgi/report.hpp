@@ -156,7 +156,7 @@ struct ReportOptions {
     std::vector<int> layers = {1, 2};
     int width = 320;
     int height = 180;
-    int rays = 512;            // reference rays per pixel
+    int rays = 512;            // reference rays per pixel; 0: deepgi reference's adaptive budgets
     int converged_taps = 256;  // "converged" screen-space result: optimal pattern at this count
     int warmup = 1;            // untimed frames before the timed ones
     int frames = 5;            // timed frames; the median is reported
