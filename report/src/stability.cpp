@@ -16,17 +16,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct Frame {
-    FloatImage depth;  // depth pyramid level 0: > 0 where layer 0 hit a surface
-    FloatImage raw;
-    FloatImage blurred;
-};
+using Frame = hard_cases::AoFrame;
 
 Frame render(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
-    Renderer renderer(scene, settings, loader);
-    renderer.render(scene.default_camera);
-    return {renderer.read_pass_output("depth_pyramid-level0"), renderer.read_pass_output("ao-raw"),
-            renderer.read_pass_output("ao-blurred")};
+    return hard_cases::render_ao(scene, settings, loader);
 }
 
 // Pixels of an AO image that are no visibility: non-finite or above 1. The
@@ -61,20 +54,13 @@ double worst_difference(const FloatImage& a, const FloatImage& b) {
     return worst;
 }
 
-// Lowest raw or blurred AV over viewport pixels with a surface, and how many
-// such pixels there are. NaN when any AV or depth pixel is invalid.
-double lowest_on_surfaces(const Frame& frame, int guard, long long* surface_pixels) {
-    *surface_pixels = 0;
-    if (invalid_pixels(frame) > 0) return kNaN;
-    double lowest = 1.0;
-    for (int y = guard; y < frame.raw.height - guard; ++y) {
-        for (int x = guard; x < frame.raw.width - guard; ++x) {
-            if (!(frame.depth.at(x, y, 0) > 0.0f)) continue;
-            ++*surface_pixels;
-            lowest = std::min({lowest, double(frame.raw.at(x, y)), double(frame.blurred.at(x, y))});
-        }
+// hard_cases::lowest_on_surfaces, and NaN when any AV or depth pixel is invalid.
+double valid_lowest_on_surfaces(const Frame& frame, int guard, long long* surface_pixels) {
+    if (invalid_pixels(frame) > 0) {
+        *surface_pixels = 0;
+        return kNaN;
     }
-    return lowest;
+    return hard_cases::lowest_on_surfaces(frame, guard, surface_pixels);
 }
 
 std::string number(double value) {
@@ -157,7 +143,7 @@ std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& case
             settings.ao.radius = radius;
             long long surface = 0;
             const double lowest =
-                lowest_on_surfaces(render(scene, settings, loader), guard, &surface);
+                valid_lowest_on_surfaces(render(scene, settings, loader), guard, &surface);
             const std::string id = fmt::format("far floor at 1 km, near 1 mm, pitch {}, radius {}",
                                                number(pitch), number(radius));
             table.at_least(id, "lowest AV on floor pixels", lowest,
@@ -174,7 +160,8 @@ std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& case
             RenderSettings settings = base;
             settings.ao.layers = layers;
             long long surface = 0;
-            double lowest = lowest_on_surfaces(render(scene, settings, loader), guard, &surface);
+            double lowest =
+                valid_lowest_on_surfaces(render(scene, settings, loader), guard, &surface);
             if (surface == 0) lowest = kNaN;  // nothing seen: the case did not happen
             table.at_least(
                 fmt::format("grazing floor, pitch {}, {} layer(s)", number(pitch), layers),

@@ -5,6 +5,7 @@
 
 #include "scene/scene_builder.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace deepgi::hard_cases {
@@ -102,6 +103,26 @@ Scene guard_edge(const RenderSettings& settings, int edge_column) {
     builder.finish(scene);
     set_camera(scene, camera);
     return scene;
+}
+
+AoFrame render_ao(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
+    Renderer renderer(scene, settings, loader);
+    renderer.render(scene.default_camera);
+    return {renderer.read_pass_output("depth_pyramid-level0"), renderer.read_pass_output("ao-raw"),
+            renderer.read_pass_output("ao-blurred")};
+}
+
+double lowest_on_surfaces(const AoFrame& frame, int guard, long long* surface_pixels) {
+    *surface_pixels = 0;
+    double lowest = 1.0;
+    for (int y = guard; y < frame.raw.height - guard; ++y) {
+        for (int x = guard; x < frame.raw.width - guard; ++x) {
+            if (!(frame.depth.at(x, y, 0) > 0.0f)) continue;
+            ++*surface_pixels;
+            lowest = std::min({lowest, double(frame.raw.at(x, y)), double(frame.blurred.at(x, y))});
+        }
+    }
+    return lowest;
 }
 
 }  // namespace deepgi::hard_cases

@@ -17,17 +17,10 @@ namespace {
 
 namespace hc = hard_cases;
 
-struct Frame {
-    FloatImage depth;  // depth pyramid level 0: > 0 where layer 0 hit a surface
-    FloatImage raw;
-    FloatImage blurred;
-};
+using Frame = hc::AoFrame;
 
 Frame render(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
-    Renderer renderer(scene, settings, loader);
-    renderer.render(scene.default_camera);
-    return {renderer.read_pass_output("depth_pyramid-level0"), renderer.read_pass_output("ao-raw"),
-            renderer.read_pass_output("ao-blurred")};
+    return hc::render_ao(scene, settings, loader);
 }
 
 // Finite and at most 1. The solid-angle visibility is signed before compose
@@ -42,16 +35,10 @@ void check_valid_visibility(const Frame& frame) {
 
 // Lowest visibility over the visible (non-guard) pixels that hit a surface.
 float lowest_on_surfaces(const Frame& frame, int guard, int* surface_pixels) {
-    float lowest = 1.0f;
-    *surface_pixels = 0;
-    for (int y = guard; y < frame.raw.height - guard; ++y) {
-        for (int x = guard; x < frame.raw.width - guard; ++x) {
-            if (!(frame.depth.at(x, y, 0) > 0.0f)) continue;
-            ++*surface_pixels;
-            lowest = std::min({lowest, frame.raw.at(x, y), frame.blurred.at(x, y)});
-        }
-    }
-    return lowest;
+    long long count = 0;
+    const double lowest = hc::lowest_on_surfaces(frame, guard, &count);
+    *surface_pixels = int(count);
+    return float(lowest);
 }
 
 TEST_CASE("stability: a scene scaled by 1e-3 and by 1e3 with matching lengths gives the same AV",

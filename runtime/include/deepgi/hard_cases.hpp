@@ -2,13 +2,19 @@
 // The numerical hard cases of the deep G-buffer and deep SAO (docs/deep-sao.md,
 // "Numerical stability"): the scenes, settings and parameter lists that both
 // the stability tests and the report's stability table render, built here once
-// so that the two always exercise the same inputs. Nothing here renders.
+// so that the two always exercise the same inputs, and what they read back
+// from a rendered case.
+#include "deepgi/image_io.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
 
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace deepgi {
+class ShaderLoader;
+}
 
 namespace deepgi::hard_cases {
 
@@ -74,5 +80,20 @@ std::vector<int> guard_edge_columns(const RenderSettings& settings);
 // a camera at the origin looking down -Z, in front of a far wall (50 m): depth
 // jumps by a factor of 160 between neighbouring pixels there.
 Scene guard_edge(const RenderSettings& settings, int edge_column);
+
+// What a case gives back: the AV before and after the blur, and level 0 of
+// the depth pyramid (> 0 where layer 0 hit a surface).
+struct AoFrame {
+    FloatImage depth;
+    FloatImage raw;
+    FloatImage blurred;
+};
+
+// One frame of `scene` from its default camera; needs a current GL context.
+AoFrame render_ao(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader);
+
+// The lowest raw or blurred AV over the viewport pixels (guard band excluded)
+// that hit a surface, and how many such pixels there are; 1 when none.
+double lowest_on_surfaces(const AoFrame& frame, int guard, long long* surface_pixels);
 
 }  // namespace deepgi::hard_cases
