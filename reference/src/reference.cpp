@@ -38,6 +38,15 @@ std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
 }
 
 // Orthonormal tangent frame around a unit normal (branchless, Duff et al.).
+// How far a ray leaves a surface at `position` so that it does not hit the
+// triangle it starts on again: relative to the distance from the origin,
+// where float positions lose their precision, plus a hair of `length` (the
+// ray's radius, or the scene's size) for points at the origin.
+float surface_offset(glm::vec3 position, float length) {
+    return 1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
+           1e-6f * length;
+}
+
 void tangent_frame(glm::dvec3 n, glm::dvec3& t, glm::dvec3& b) {
     const double sign = std::copysign(1.0, n.z);
     const double a = -1.0 / (sign + n.z);
@@ -55,12 +64,7 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
-    // Leave the surface by a hair along the normal so the first triangle is
-    // not hit again; relative to the distance from the origin, where float
-    // positions lose their precision.
-    const float offset =
-        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
-        1e-6f * radius;
+    const float offset = surface_offset(position, radius);
     const glm::vec3 origin = position + glm::vec3(n) * offset;
     const double r2 = double(radius) * double(radius);
 
@@ -155,10 +159,7 @@ glm::dvec3 reflected_key_light(const RayScene& scene, const RayScene::Hit& hit,
     // Shadow ray from just off the side the surface was hit on; the renderer
     // filters a shadow map here, the reference takes the exact visibility.
     const glm::vec3 side = glm::dot(hit.normal, to_light) >= 0.0f ? hit.normal : -hit.normal;
-    const float offset =
-        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
-        1e-6f * scene.scale();
-    const glm::vec3 origin = position + side * offset;
+    const glm::vec3 origin = position + side * surface_offset(position, scene.scale());
     if (scene.occluded(origin, to_light, 0.0f, shadow_far)) return glm::dvec3(0.0);
     return glm::dvec3(surface.albedo) / pi * glm::dvec3(incident) * double(cosine);
 }
@@ -188,12 +189,8 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
-    // The same offset as for ambient visibility. Both techniques measure
-    // directions and distances from the offset origin.
-    const float offset =
-        1e-5f * std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) +
-        1e-6f * radius;
-    const glm::vec3 origin = position + glm::vec3(n) * offset;
+    // Both techniques measure directions and distances from the offset origin.
+    const glm::vec3 origin = position + glm::vec3(n) * surface_offset(position, radius);
     const glm::dvec3 origin_d(origin);
     const std::vector<RayScene::Emitter>& emitters = scene.emitters();
     const bool sample_emitters = !emitters.empty();
