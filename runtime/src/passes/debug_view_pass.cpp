@@ -21,12 +21,7 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+        bind_gbuffer_and_direct_light(frame);
         glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
         glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
         glBindTextureUnit(DEEPGI_UNIT_AO_TEMPORAL, frame.texture("ao.temporal"));

@@ -1,5 +1,7 @@
 // Helpers every screen-space pass shares.
+#include "frame_resources.hpp"
 #include "pass.hpp"
+#include "shader_shared.hpp"
 
 #include <fmt/format.h>
 
@@ -33,6 +35,15 @@ gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what) {
 void label_texture(const gl::Texture& texture, std::string_view pass, std::string_view what) {
     const std::string label = fmt::format("{} {}", pass, what);
     glObjectLabel(GL_TEXTURE, texture.get(), -1, label.c_str());
+}
+
+void bind_gbuffer_and_direct_light(const FrameResources& frame) {
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
+    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
+    glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
 }
 
 }  // namespace deepgi

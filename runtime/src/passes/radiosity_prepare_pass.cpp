@@ -58,12 +58,7 @@ public:
         glUseProgram(base);
         glProgramUniform4f(base, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, 0.0f, settings.boost, 0.0f,
                            settings.rho_prop);
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+        bind_gbuffer_and_direct_light(frame);
         // Last frame's filtered E and its keys (radiosity_pass.cpp owns them).
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
                           frame.history("radiosity-layer0").previous());
