@@ -315,6 +315,41 @@ glm::vec3 camera_ray_direction(const Camera& camera, const RenderSettings& setti
     return {ndc * ray_scale, -1.0f};
 }
 
+LayerClassifier layer_classifier(const RayScene& scene, const Camera& camera,
+                                 const RenderSettings& render) {
+    const FrameLayout layout = frame_layout(render);
+    const int w = layout.internal_width, h = layout.internal_height;
+    const glm::mat4 view = camera_view_matrix(camera);
+    const glm::vec3 eye = glm::vec3(glm::inverse(view)[3]);
+    const glm::mat4 projection = guard_band_projection(camera, render);
+    const glm::vec2 ray_scale{1.0f / projection[0][0], 1.0f / projection[1][1]};
+    const float near_plane = camera.near_plane, separation = render.min_separation;
+    return [&scene, view, eye, ray_scale, w, h, near_plane, separation](glm::vec3 world) -> int {
+        const glm::vec3 c = glm::vec3(view * glm::vec4(world, 1.0f));
+        const float depth = -c.z;
+        if (!(depth >= near_plane)) return -1;
+        // Inside the guard-banded frame (the layers exist nowhere else).
+        const glm::vec2 ndc = glm::vec2(c.x, c.y) / (depth * ray_scale);
+        const float fx = (ndc.x * 0.5f + 0.5f) * float(w), fy = (ndc.y * 0.5f + 0.5f) * float(h);
+        if (!(fx >= 0.0f && fy >= 0.0f && fx < float(w) && fy < float(h))) return -1;
+        // The camera ray through the point, of unit depth as in the peel, so
+        // distances along it are linear depths.
+        const glm::vec3 direction = (world - eye) / depth;
+        // The point and the ray's hit carry float error of the point's
+        // coordinates and of its depth; a surface this close in depth is the
+        // same surface.
+        const float tolerance = 1e-4f * depth + surface_offset(world, 0.0f);
+        const RayScene::Hit first = scene.intersect_front(eye, direction, near_plane, 1e30f);
+        if (!first.hit) return -1;
+        if (std::abs(first.distance - depth) <= tolerance) return 0;
+        if (depth < first.distance) return -1;  // a face turned away from the camera
+        const RayScene::Hit second =
+            scene.intersect_front(eye, direction, first.distance + separation, 1e30f);
+        if (second.hit && std::abs(second.distance - depth) <= tolerance) return 1;
+        return -1;
+    };
+}
+
 ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                                  const ReferenceSettings& settings) {
     const RenderSettings& render = settings.render;
@@ -404,31 +439,7 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
         },
         false);
 
-    // An occluder counts as seen by a layer when that layer's depth, at the
-    // pixel it projects to or one of the eight around it, agrees within 2%
-    // of its depth or three pixel footprints, whichever is larger.
-    const LayerClassifier classify = [&](glm::vec3 world) -> int {
-        const glm::vec3 c = glm::vec3(view * glm::vec4(world, 1.0f));
-        const float depth = -c.z;
-        if (depth < camera.near_plane) return -1;
-        const glm::vec2 ndc = glm::vec2(c.x, c.y) / (depth * ray_scale);
-        const int px = int(std::floor((ndc.x * 0.5f + 0.5f) * float(w)));
-        const int py = int(std::floor((ndc.y * 0.5f + 0.5f) * float(h)));
-        if (px < 0 || py < 0 || px >= w || py >= h) return -1;
-        const float footprint = 2.0f * ray_scale.y * depth / float(h);
-        const float tolerance = std::max(0.02f * depth, 3.0f * footprint);
-        for (int layer = 0; layer < 2; ++layer) {
-            const FloatImage& d = layer == 0 ? out.depth_layer0 : out.depth_layer1;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int qx = px + dx, qy = py + dy;
-                    if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-                    const float z = d.at(qx, qy);
-                    if (z > 0.0f && std::abs(z - depth) <= tolerance) return layer;
-                }
-        }
-        return -1;
-    };
+    const LayerClassifier classify = layer_classifier(scene, camera, render);
 
     if (settings.ambient_visibility)
         parallel_rows(

@@ -173,6 +173,41 @@ TEST_CASE("reference: the occlusion split sums to 1 - AV and finds occluders onl
     REQUIRE(bench.y > 0.01 * bench.x);
 }
 
+TEST_CASE("reference: the layer classifier follows the camera ray through each point",
+          "[reference]") {
+    // A board (top facing up at y = 1, underside facing down at y = 0.94)
+    // over a floor, seen from above and in front. Every expected layer is
+    // worked out from the geometry, not from the classifier.
+    deepgi::Scene scene;
+    add_floor(scene, 50.0f);
+    add_quad(scene, {-1, 1, -1}, {1, 1, -1}, {1, 1, -3}, {-1, 1, -3});                  // top
+    add_quad(scene, {-1, 0.94f, -1}, {-1, 0.94f, -3}, {1, 0.94f, -3}, {1, 0.94f, -1});  // underside
+    const deepgi::RayScene rays(scene);
+    deepgi::Camera camera;
+    camera.position = {0.0f, 2.0f, 0.0f};
+    camera.pitch = glm::radians(-25.0f);
+    deepgi::RenderSettings render;
+    render.width = 64;
+    render.height = 36;
+    render.min_separation = 0.5f;
+    const deepgi::LayerClassifier layer = deepgi::layer_classifier(rays, camera, render);
+    // In plain view: the board's top and the floor past the board (the ray
+    // to (0, 0, -8) crosses y = 1 at z = -4, beyond the board).
+    CHECK(layer({0.3f, 1.0f, -2.0f}) == 0);
+    CHECK(layer({0.0f, 0.0f, -8.0f}) == 0);
+    // The underside faces away from the camera: no layer stores it.
+    CHECK(layer({0.3f, 0.94f, -2.0f}) == -1);
+    // The floor under the board: the ray to (0, 0, -2.5) crosses the top at
+    // z = -1.25, so the floor is the next front face, metres behind: layer 1.
+    CHECK(layer({0.0f, 0.0f, -2.5f}) == 1);
+    // With a separation larger than that gap, layer 1 peels past the floor.
+    render.min_separation = 20.0f;
+    CHECK(deepgi::layer_classifier(rays, camera, render)({0.0f, 0.0f, -2.5f}) == -1);
+    // Behind the camera, and outside the guard-banded frame.
+    CHECK(layer({0.0f, 0.0f, 3.0f}) == -1);
+    CHECK(layer({40.0f, 0.0f, -8.0f}) == -1);
+}
+
 TEST_CASE("reference: deepgi reference writes the images, and bad input writes nothing",
           "[reference]") {
     namespace fs = std::filesystem;

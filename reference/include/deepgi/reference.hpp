@@ -201,6 +201,19 @@ struct ReferenceImages {
 glm::vec3 camera_ray_direction(const Camera& camera, const RenderSettings& settings, float x,
                                float y);
 
+// Which layer of the deep G-buffer could store a point on a surface of the
+// scene, by the definition the G-buffer is built with: follow the camera ray
+// through the point itself; layer 0 is its nearest front face past the near
+// plane, layer 1 its nearest front face at least min_separation (linear depth)
+// behind that. The point is seen by the layer whose surface it is (same depth
+// within float tolerance), and by neither when it lies on a face turned away
+// from the camera, behind both layers, or outside the guard-banded frame.
+// Exact, not a depth comparison with the rendered pixels: a face that the
+// pixel grid samples edge-on (less than a pixel of it) is still seen, while
+// the underside of a board seen edge-on is not.
+LayerClassifier layer_classifier(const RayScene& scene, const Camera& camera,
+                                 const RenderSettings& render);
+
 ReferenceImages render_reference(const RayScene& rays, const Camera& camera,
                                  const ReferenceSettings& settings);
 
