@@ -14,9 +14,14 @@
 // more against what one over layer 0 alone would reach (plus the occlusion
 // only layer 1 sees). The difference between the lines is what the G-buffer
 // lacks; what remains against the visible truth is the estimator's error.
+// Last, where the blurred bias sits: the share of it held by the 5% of rows
+// that carry the most, and which rows those are (counted from the top of the
+// viewport). A share far above 5% names a band of the view, such as the
+// surfaces level with the eye, which the G-buffer samples edge-on.
 #include "deepgi/image_io.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -81,8 +86,11 @@ int main(int argc, char** argv) {
             {"ao-blurred vs visible truth (both layers)", "ao-blurred", true, 2},
             {"ao-blurred vs visible truth (layer 0)", "ao-blurred", true, 1},
         };
+        std::vector<double> row_bias(std::size_t(truth.height), 0.0);  // blurred vs truth
+        long long row_bias_pixels = 0;
         for (const Comparison& comparison : comparisons) {
             const auto estimate = deepgi::read_pfm(dump / (comparison.output + ".pfm"));
+            const bool by_row = comparison.label == "ao-blurred";
             double sum_abs = 0.0, sum = 0.0;
             long long count = 0, open = 0, open_dark = 0;
             for (int y = guard; y < truth.height - guard; ++y) {
@@ -102,6 +110,7 @@ int main(int argc, char** argv) {
                     sum_abs += std::abs(error);
                     sum += error;
                     ++count;
+                    if (by_row) row_bias[std::size_t(y)] += error;
                     // Open surface: nothing within r in the truth.
                     if (truth.at(x, y) >= 0.9999f) {
                         ++open;
@@ -113,7 +122,29 @@ int main(int argc, char** argv) {
                 "{}: {} pixels, MAE {:.4f}, bias {:+.4f}, open pixels below 0.99: {} of {}\n",
                 comparison.label, count, count ? sum_abs / count : 0.0, count ? sum / count : 0.0,
                 open_dark, open);
+            if (by_row) row_bias_pixels = count;
         }
+        std::vector<int> rows;
+        for (int y = guard; y < truth.height - guard; ++y) rows.push_back(y);
+        std::sort(rows.begin(), rows.end(), [&](int a, int b) {
+            return row_bias[std::size_t(a)] > row_bias[std::size_t(b)];
+        });
+        const std::size_t top = std::max<std::size_t>(1, rows.size() / 20);
+        double total = 0.0, carried = 0.0;
+        for (int y : rows) total += row_bias[std::size_t(y)];
+        std::vector<int> from_top;
+        for (std::size_t k = 0; k < top && k < rows.size(); ++k) {
+            carried += row_bias[std::size_t(rows[k])];
+            from_top.push_back(truth.height - 1 - guard - rows[k]);  // PFM rows run bottom to top
+        }
+        std::sort(from_top.begin(), from_top.end());
+        if (row_bias_pixels > 0 && !from_top.empty())
+            fmt::print(
+                "ao-blurred bias by row: the {} rows ({:.0f}%) carrying the most hold {:+.4f} of "
+                "{:+.4f}; viewport rows from the top {}\n",
+                from_top.size(), 100.0 * double(from_top.size()) / double(rows.size()),
+                carried / double(row_bias_pixels), total / double(row_bias_pixels),
+                fmt::join(from_top, ","));
     } catch (const std::exception& error) {
         fmt::print(stderr, "deepgi_compare_reference: {}\n", error.what());
         return 2;
