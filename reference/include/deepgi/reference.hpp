@@ -210,7 +210,8 @@ glm::vec3 camera_ray_direction(const Camera& camera, const RenderSettings& setti
 // from the camera, behind both layers, or outside the guard-banded frame.
 // Exact, not a depth comparison with the rendered pixels: a face that the
 // pixel grid samples edge-on (less than a pixel of it) is still seen, while
-// the underside of a board seen edge-on is not.
+// the underside of a board seen edge-on is not. The classifier traces into
+// `scene`, which must outlive it.
 LayerClassifier layer_classifier(const RayScene& scene, const Camera& camera,
                                  const RenderSettings& render);
 
