@@ -208,7 +208,7 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--rays", options.rays, "Most rays per pixel");
     app.add_option("--min-rays", options.min_rays, "Fewest rays per pixel");
     app.add_option("--target-error", options.target_error,
-                   "Stop adding rays once the standard error is below this");
+                   "Stop adding rays once the standard error (times 1.3) is below this");
     app.add_option("--seed", options.seed, "Random seed (same seed, same images)");
     app.add_option("--threads", options.threads, "Worker threads (0: all)");
     app.add_option("--ao-radius", options.radius, "AO radius r (m), as deepgi --ao-radius");

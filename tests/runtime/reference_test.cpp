@@ -114,6 +114,71 @@ TEST_CASE("reference: the inside corner of two planes matches the closed-form in
     }
 }
 
+// The directions are stratified in independent sets, and the standard error
+// is the spread of the sets' means: over 400 seeds at a fixed 1024 rays, the
+// spread of AV in the inside corner above (a = 0.3) must match the root mean
+// square reported standard error within 20% (five times the spread's own
+// relative uncertainty, about 1 / sqrt(2 * 400)), the mean the closed form
+// within five standard errors of the mean, and the spread must be below
+// half of what independent directions give, sqrt(var f / N) with var f the
+// falloff's variance under cosine weighting (E[f^2] by the midpoint rule).
+TEST_CASE("reference: ambient visibility's standard error matches the spread over seeds",
+          "[reference]") {
+    deepgi::Scene scene;
+    const float l = 200.0f;
+    add_floor(scene, l);
+    add_quad(scene, {0, 0, l}, {0, 0, -l}, {0, l, -l}, {0, l, l});  // wall x = 0, facing +x
+    const deepgi::RayScene rays(scene);
+    const float radius = 0.5f;
+    const double a = 0.3, pi = glm::pi<double>();
+    const double occlusion = ((1 + 2 * a * a) * std::acos(a) - 3 * a * std::sqrt(1 - a * a)) / pi;
+    // E[f^2] over cosine-weighted directions: a direction (theta, phi) from
+    // X = (a r, 0, z) reaches the wall at d = a r / (sin theta |cos phi|)
+    // when it heads towards it (cos phi < 0); f = 1 - d^2 / r^2 within r.
+    double first_moment = 0.0, second_moment = 0.0;
+    const int cells = 2000;
+    for (int i = 0; i < cells; ++i) {
+        const double u = (i + 0.5) / cells;  // sin^2 theta, uniform under cos weighting
+        for (int j = 0; j < cells; ++j) {
+            const double phi = 2 * pi * (j + 0.5) / cells;
+            if (std::cos(phi) >= 0) continue;
+            const double d = a / (std::sqrt(u) * -std::cos(phi));  // in units of r
+            if (d < 1) {
+                first_moment += 1 - d * d;
+                second_moment += (1 - d * d) * (1 - d * d);
+            }
+        }
+    }
+    first_moment /= double(cells) * cells;
+    second_moment /= double(cells) * cells;
+    // The sum agrees with the closed form (a check on the sum itself).
+    REQUIRE(first_moment == Approx(occlusion).margin(1e-4));
+    const int count = 1024, seeds = 400;
+    const double independent = std::sqrt((second_moment - occlusion * occlusion) / count);
+    deepgi::AoRayBudget budget;
+    budget.min_rays = budget.max_rays = count;
+    double sum = 0.0, squares = 0.0, error_squares = 0.0;
+    for (int seed = 0; seed < seeds; ++seed) {
+        const deepgi::AoSample s =
+            deepgi::ambient_visibility_at(rays, {float(a) * radius, 0.0f, 0.3f}, {0, 1, 0}, radius,
+                                          budget, 700u + std::uint64_t(seed));
+        REQUIRE(s.rays == count);
+        sum += s.visibility;
+        squares += s.visibility * s.visibility;
+        error_squares += s.standard_error * s.standard_error;
+    }
+    const double mean = sum / seeds;
+    const double spread = std::sqrt((squares - sum * mean) / (seeds - 1));
+    const double reported = std::sqrt(error_squares / seeds);
+    INFO("mean AV " << mean << ", expected " << 1 - occlusion << ", spread " << spread
+                    << ", reported standard error " << reported << ", independent directions "
+                    << independent);
+    REQUIRE(mean == Approx(1 - occlusion).margin(5 * spread / std::sqrt(seeds)));
+    REQUIRE(spread > 0.8 * reported);
+    REQUIRE(spread < 1.25 * reported);
+    REQUIRE(spread < 0.5 * independent);
+}
+
 TEST_CASE("reference: images do not depend on the thread count", "[reference]") {
     deepgi::Scene scene;
     add_floor(scene, 50.0f);

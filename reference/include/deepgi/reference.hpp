@@ -94,7 +94,7 @@ private:
 struct AoSample {
     double visibility = 1.0;      // AV, the falloff-weighted definition
     double hit_visibility = 1.0;  // 1 - P(hit within r) under cosine weighting
-    double standard_error = 0.0;  // of visibility: sqrt(sample variance / rays)
+    double standard_error = 0.0;  // of visibility: the spread of the sets' means
     // Occlusion (1 - AV) split by who could see the occluder; sums to 1 - AV.
     double occlusion_layer0 = 0.0;
     double occlusion_layer1 = 0.0;
@@ -105,11 +105,17 @@ struct AoSample {
 // Says which depth layer (0, 1) could see a world-space point, or -1.
 using LayerClassifier = std::function<int(glm::vec3)>;
 
+// Directions are stratified in independent sets as for irradiance (see
+// IrradianceSample); the standard error is the spread of the sets' means.
 struct AoRayBudget {
     int min_rays = 1024;
-    int max_rays = 65536;
-    double target_error = 0.004;  // stop once the standard error is below this
-    int batch = 256;
+    int max_rays = 65536;  // never passed: a round that might pass it is not started
+    // Stop once error_margin x the standard error is below target_error; the
+    // margin as IrradianceRayBudget::error_margin.
+    double target_error = 0.004;
+    double error_margin = 1.3;
+    int replicates = 16;  // independently scrambled sets of directions, at least 2
+    int batch = 256;      // rays between checks (rounded up to whole rounds of the sets)
 };
 
 AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
