@@ -1,7 +1,7 @@
 // Monte Carlo ambient visibility and one-bounce irradiance on the G-buffer's
-// pixel grid. Every pixel draws its rays from its own random stream (seed,
-// pixel index), so the images do not depend on the number of threads or on
-// scheduling.
+// pixel grid. Every pixel draws the keys that scramble its sample points
+// from its own random stream (seed, pixel index), so the images do not
+// depend on the number of threads or on scheduling.
 #include "deepgi/reference.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,7 +18,7 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 
-// SplitMix64: small, fast, and good enough to drive per-pixel streams.
+// SplitMix64: small, fast, and good enough for per-pixel streams of keys.
 struct Random {
     std::uint64_t state;
     std::uint64_t next() {
@@ -27,8 +27,6 @@ struct Random {
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    // Uniform in [0, 1) with 53 random bits.
-    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
 };
 
 std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
