@@ -35,7 +35,7 @@ std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
     return mix.next();
 }
 
-// Randomised quasi-Monte Carlo points for the irradiance estimator.
+// Randomised quasi-Monte Carlo points for both estimators.
 //
 // The first two dimensions of Sobol's sequence, in 32-bit fixed point: the
 // index with its bits reversed (van der Corput), and the index through
@@ -65,7 +65,7 @@ std::uint32_t sobol_y(std::uint32_t index) {
 // flips or not by the digits before it, which permutes the two halves of
 // every dyadic interval: the nets stay nets. The first addition of a
 // uniform random 32-bit key makes every point uniform on the 2^-32 grid, so
-// the mean over the points is unbiased; the products with fixed odd-looking
+// the mean over the points is unbiased; the products with fixed even
 // factors and the second key spread each key's effect over the deeper
 // digits (a cheap stand-in for Owen's independent coin per interval).
 std::uint32_t nested_scramble(std::uint32_t reversed, std::uint64_t key) {
