@@ -42,6 +42,7 @@ struct ReferenceOptions {
     float radiosity_radius = 1.0f;
     int irradiance_rays = 16384;
     int irradiance_min_rays = 1024;
+    int irradiance_ceiling_rays = 65536;
     double irradiance_target_error = 0.01;
 };
 
@@ -71,6 +72,8 @@ int run(const ReferenceOptions& options) {
     if (!(options.target_error >= 0.0)) throw deepgi::InputError("--target-error must be >= 0");
     if (options.irradiance_rays < 1)
         throw deepgi::InputError("--irradiance-rays must be at least 1");
+    if (options.irradiance_ceiling_rays < 1)
+        throw deepgi::InputError("--irradiance-ceiling-rays must be at least 1");
     if (!(options.radiosity_radius > 0.0f) || !std::isfinite(options.radiosity_radius))
         throw deepgi::InputError("--radiosity-radius must be a finite number of metres > 0");
     if (!(options.irradiance_target_error >= 0.0))
@@ -97,6 +100,7 @@ int run(const ReferenceOptions& options) {
     settings.irradiance_rays.max_rays = options.irradiance_rays;
     settings.irradiance_rays.min_rays =
         std::min(options.irradiance_min_rays, options.irradiance_rays);
+    settings.irradiance_rays.ceiling_max_rays = options.irradiance_ceiling_rays;
     settings.irradiance_rays.target_relative_error = options.irradiance_target_error;
     settings.seed = options.seed;
     settings.threads = options.threads;
@@ -204,7 +208,7 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--rays", options.rays, "Most rays per pixel");
     app.add_option("--min-rays", options.min_rays, "Fewest rays per pixel");
     app.add_option("--target-error", options.target_error,
-                   "Stop adding rays once the standard error is below this");
+                   "Stop adding rays once the standard error (times 1.3) is below this");
     app.add_option("--seed", options.seed, "Random seed (same seed, same images)");
     app.add_option("--threads", options.threads, "Worker threads (0: all)");
     app.add_option("--ao-radius", options.radius, "AO radius r (m), as deepgi --ao-radius");
@@ -218,9 +222,12 @@ int run_reference_command(int argc, char** argv) {
                    "Most irradiance rays per pixel (cosine directions and emitter shadow rays)");
     app.add_option("--irradiance-min-rays", options.irradiance_min_rays,
                    "Fewest irradiance rays per pixel");
+    app.add_option("--irradiance-ceiling-rays", options.irradiance_ceiling_rays,
+                   "Most irradiance rays per pixel whose standard error is still at or above "
+                   "0.005 after --irradiance-rays");
     app.add_option("--irradiance-target-error", options.irradiance_target_error,
-                   "Stop adding irradiance rays once every channel's standard error is below "
-                   "this fraction of E (or 0.002)");
+                   "Stop adding irradiance rays once every channel's standard error (times "
+                   "1.3) is below this fraction of E, or 0.002, and below 0.005");
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi reference"))
         return *status;
     return run_reporting_errors("deepgi reference", [&] { return run(options); });

@@ -228,6 +228,14 @@ std::size_t RayScene::pick_emitter(double u) const {
     return std::min<std::size_t>(std::size_t(it - cdf.begin()), cdf.size() - 1);
 }
 
+std::size_t RayScene::pick_emitter(double u, double& within) const {
+    const std::vector<double>& cdf = state_->emitter_cdf;
+    const std::size_t i = pick_emitter(u);
+    const double low = i == 0 ? 0.0 : cdf[i - 1], high = cdf[i];
+    within = high > low ? std::clamp((u - low) / (high - low), 0.0, std::nextafter(1.0, 0.0)) : 0.0;
+    return i;
+}
+
 bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

@@ -1,7 +1,7 @@
 // Monte Carlo ambient visibility and one-bounce irradiance on the G-buffer's
-// pixel grid. Every pixel draws its rays from its own random stream (seed,
-// pixel index), so the images do not depend on the number of threads or on
-// scheduling.
+// pixel grid. Every pixel draws the keys that scramble its sample points
+// from its own random stream (seed, pixel index), so the images do not
+// depend on the number of threads or on scheduling.
 #include "deepgi/reference.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,7 +18,7 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 
-// SplitMix64: small, fast, and good enough to drive per-pixel streams.
+// SplitMix64: small, fast, and good enough for per-pixel streams of keys.
 struct Random {
     std::uint64_t state;
     std::uint64_t next() {
@@ -27,8 +27,6 @@ struct Random {
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    // Uniform in [0, 1) with 53 random bits.
-    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
 };
 
 std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
@@ -36,6 +34,62 @@ std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t index) {
     mix.next();
     return mix.next();
 }
+
+// Randomised quasi-Monte Carlo points for both estimators.
+//
+// The first two dimensions of Sobol's sequence, in 32-bit fixed point: the
+// index with its bits reversed (van der Corput), and the index through
+// Pascal's matrix mod 2. Every aligned run of 2^m points is a (0, m, 2)-net:
+// each of the 2^m boxes 2^-a wide and 2^-(m-a) high holds exactly one point,
+// and a run of 16 k points is k such nets of 16, so the points stay evenly
+// spread whenever the estimator stops.
+std::uint32_t reverse_bits(std::uint32_t x) {
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+
+std::uint32_t sobol_y(std::uint32_t index) {
+    std::uint32_t bits = 0;
+    for (std::uint32_t column = 1u << 31; index != 0; index >>= 1, column ^= column >> 1)
+        if (index & 1u) bits ^= column;
+    return bits;
+}
+
+// A random nested scramble of one coordinate, applied to its bits reversed
+// (bit 0 the first binary digit). Each step changes bit k by a function of
+// bits 0 .. k-1 only: adding carries upwards, and a product with an even
+// factor has bit k made of the bits below k. So digit k of the coordinate
+// flips or not by the digits before it, which permutes the two halves of
+// every dyadic interval: the nets stay nets. The first addition of a
+// uniform random 32-bit key makes every point uniform on the 2^-32 grid, so
+// the mean over the points is unbiased; the products with fixed even
+// factors and the second key spread each key's effect over the deeper
+// digits (a cheap stand-in for Owen's independent coin per interval).
+std::uint32_t nested_scramble(std::uint32_t reversed, std::uint64_t key) {
+    reversed += std::uint32_t(key);
+    reversed ^= reversed * 0x9E3779B8u;
+    reversed += std::uint32_t(key >> 32);
+    reversed ^= reversed * 0x85EBCA6Cu;
+    reversed ^= reversed * 0xC2B2AE3Cu;
+    return reverse_bits(reversed);
+}
+
+// One randomisation of the 2D points: point `index` of a set scrambled with
+// its own pair of keys, from the Sobol digits reversed (the first coordinate's
+// reversed digits are the index itself). Sets with independent keys are
+// independent, and each set is stratified.
+struct ScrambledPoints {
+    std::uint64_t key_x = 0, key_y = 0;
+    glm::dvec2 point(std::uint32_t index, std::uint32_t reversed_y) const {
+        constexpr double scale = 1.0 / 4294967296.0;
+        // Cell midpoints of the 2^-32 grid: never 0 or 1.
+        return {(double(nested_scramble(index, key_x)) + 0.5) * scale,
+                (double(nested_scramble(reversed_y, key_y)) + 0.5) * scale};
+    }
+};
 
 // Orthonormal tangent frame around a unit normal (branchless, Duff et al.).
 // How far a ray leaves a surface at `position` so that it does not hit the
@@ -60,7 +114,6 @@ void tangent_frame(glm::dvec3 n, glm::dvec3& t, glm::dvec3& b) {
 AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
                                float radius, const AoRayBudget& budget, std::uint64_t seed,
                                const LayerClassifier& classify) {
-    AoSample result;
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
@@ -68,47 +121,77 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
     const glm::vec3 origin = position + glm::vec3(n) * offset;
     const double r2 = double(radius) * double(radius);
 
+    // Stratified in independent sets, as irradiance_at: each set is the same
+    // Sobol points under its own nested scramble, so its mean is unbiased
+    // and the spread of the set means is the standard error.
+    struct Set {
+        ScrambledPoints directions;
+        double occlusion = 0.0, hits = 0.0;
+        double split[3] = {0.0, 0.0, 0.0};
+    };
+    const int set_count = std::max(2, budget.replicates);
+    std::vector<Set> sets(static_cast<std::size_t>(set_count));
     Random random{seed};
-    double sum = 0.0, sum_squares = 0.0, hits = 0.0;
-    double split[3] = {0.0, 0.0, 0.0};
-    long long rays = 0;
-    const int batch = std::max(1, budget.batch);
-    while (rays < budget.max_rays) {
-        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++rays) {
-            // Cosine-weighted direction: uniform on the unit disk, lifted.
-            const double u1 = random.uniform(), u2 = random.uniform();
-            const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
-            const double z = std::sqrt(std::max(0.0, 1.0 - u1));
-            const glm::dvec3 w = t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z;
-            const RayScene::Hit hit = scene.intersect(origin, glm::vec3(w), 0.0f, radius);
-            if (!hit.hit) continue;
-            const double d = hit.distance + offset * z;  // from X, not the offset origin
-            const double occlusion = std::max(0.0, 1.0 - d * d / r2);
-            sum += occlusion;
-            sum_squares += occlusion * occlusion;
-            hits += 1.0;
-            if (classify) {
-                const int layer = classify(origin + glm::vec3(w) * hit.distance);
-                split[layer == 0 ? 0 : layer == 1 ? 1 : 2] += occlusion;
-            }
+    for (Set& set : sets) set.directions = {random.next(), random.next()};
+    auto trace = [&](glm::dvec2 u, Set& set) {
+        // Cosine-weighted direction: uniform on the unit disk, lifted.
+        const double s = std::sqrt(u.x), phi = 2.0 * pi * u.y;
+        const double z = std::sqrt(std::max(0.0, 1.0 - u.x));
+        const glm::dvec3 w = t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z;
+        const RayScene::Hit hit = scene.intersect(origin, glm::vec3(w), 0.0f, radius);
+        if (!hit.hit) return;
+        const double d = hit.distance + offset * z;  // from X, not the offset origin
+        const double occlusion = std::max(0.0, 1.0 - d * d / r2);
+        set.occlusion += occlusion;
+        set.hits += 1.0;
+        if (classify) {
+            const int layer = classify(origin + glm::vec3(w) * hit.distance);
+            set.split[layer == 0 ? 0 : layer == 1 ? 1 : 2] += occlusion;
         }
-        if (rays >= budget.min_rays) {
-            const double mean = sum / double(rays);
-            const double variance = std::max(0.0, sum_squares / double(rays) - mean * mean) *
-                                    double(rays) / std::max(1.0, double(rays) - 1.0);
-            if (std::sqrt(variance / double(rays)) < budget.target_error) break;
+    };
+    auto standard_error = [&](long long points) {
+        double mean = 0.0;
+        for (const Set& set : sets) mean += set.occlusion / double(points);
+        mean /= double(set_count);
+        double squares = 0.0;
+        for (const Set& set : sets) {
+            const double deviation = set.occlusion / double(points) - mean;
+            squares += deviation * deviation;
         }
+        return std::sqrt(squares / (double(set_count - 1) * double(set_count)));
+    };
+
+    // Points per set between stop tests; a round that might pass max_rays is
+    // not started.
+    const long long step = std::max(1, (budget.batch + set_count - 1) / set_count);
+    long long points = 0, rays = 0;
+    double error = 0.0;
+    for (;;) {
+        for (long long i = 0; i < step && (points == 0 || rays + set_count <= budget.max_rays);
+             ++i, ++points, rays += set_count) {
+            const std::uint32_t index = std::uint32_t(points);
+            const std::uint32_t reversed_y = reverse_bits(sobol_y(index));
+            for (Set& set : sets) trace(set.directions.point(index, reversed_y), set);
+        }
+        error = standard_error(points);
+        if (rays + set_count > budget.max_rays) break;
+        // The margin on a noisy reading, as for irradiance.
+        if (rays >= budget.min_rays && budget.error_margin * error < budget.target_error) break;
     }
-    const double count = double(std::max<long long>(rays, 1));
-    const double mean = sum / count;
-    const double variance =
-        std::max(0.0, sum_squares / count - mean * mean) * count / std::max(1.0, count - 1.0);
-    result.visibility = 1.0 - mean;
+    AoSample result;
+    const double count = double(rays);
+    double occlusion = 0.0, hits = 0.0, split[3] = {0.0, 0.0, 0.0};
+    for (const Set& set : sets) {
+        occlusion += set.occlusion;
+        hits += set.hits;
+        for (int k = 0; k < 3; ++k) split[k] += set.split[k];
+    }
+    result.visibility = 1.0 - occlusion / count;
     result.hit_visibility = 1.0 - hits / count;
-    result.standard_error = std::sqrt(variance / count);
+    result.standard_error = error;
     result.occlusion_layer0 = split[0] / count;
     result.occlusion_layer1 = split[1] / count;
-    result.occlusion_neither = classify ? split[2] / count : mean;
+    result.occlusion_neither = classify ? split[2] / count : occlusion / count;
     result.rays = int(rays);
     return result;
 }
@@ -194,109 +277,157 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     const glm::dvec3 origin_d(origin);
     const std::vector<RayScene::Emitter>& emitters = scene.emitters();
     const bool sample_emitters = !emitters.empty();
+    long long rays = 0;
 
-    Random random{seed};
-    // Sums of one sample's estimate of E / pi: a sample is one cosine
-    // direction plus, when the scene has emitters, one point on an emitter.
-    // Samples are independent, so their spread gives the standard error of
-    // the two techniques together.
-    glm::dvec3 sum(0.0), sum_squares(0.0);
-    long long samples = 0, rays = 0;
-    const int batch = std::max(1, budget.batch);
-    auto standard_error = [&](double count) {
-        const glm::dvec3 mean = sum / count;
-        const glm::dvec3 variance = glm::max(glm::dvec3(0.0), sum_squares / count - mean * mean) *
-                                    (count / std::max(1.0, count - 1.0));
-        return pi * glm::sqrt(variance / count);
-    };
-    while (rays < budget.max_rays) {
-        for (int i = 0; i < batch && rays < budget.max_rays; ++i, ++samples) {
-            glm::dvec3 value(0.0);  // this sample's E / pi
+    // One sample's estimate of E / pi from a point of the direction square
+    // and, when the scene has emitters, a point of the emitter square.
+    auto sample = [&](glm::dvec2 direction_point, glm::dvec2 emitter_point) {
+        glm::dvec3 value(0.0);
 
-            // Cosine-weighted direction (pdf cos / pi): L itself estimates E / pi.
-            const double u1 = random.uniform(), u2 = random.uniform();
-            const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
-            const double z = std::sqrt(std::max(0.0, 1.0 - u1));
-            const glm::vec3 w(t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z);
-            ++rays;
-            const RayScene::Hit hit = scene.intersect(origin, w, 0.0f, radius);
-            // Nothing within the radius, or the back of a one-sided surface:
-            // the gather reads neither, so neither sends light here.
-            if (hit.hit && glm::dot(hit.normal, w) < 0.0f) {
-                const glm::vec3 y = origin + w * hit.distance;
-                const RayScene::Surface surface = scene.surface(hit);
-                const glm::dvec3 reflected = reflected_key_light(scene, hit, surface, y);
-                if (reflected != glm::dvec3(0.0)) value += reflected;
-                if (surface.emissive != glm::vec3(0.0f)) {
-                    double weight = 1.0;
-                    const int e = sample_emitters ? scene.emitter_index(hit.primitive) : -1;
-                    if (e >= 0) {
-                        // The density with which emitter sampling would
-                        // have chosen this direction, per unit solid angle.
-                        const RayScene::Emitter& emitter = emitters[std::size_t(e)];
-                        const double distance = double(hit.distance);
-                        const double cos_y = -glm::dot(emitter.normal, glm::dvec3(w));
-                        const double p_emitter = emitter.probability / emitter.area * distance *
-                                                 distance / std::max(cos_y, 1e-12);
-                        weight = power_heuristic(z / pi, p_emitter);
-                    }
-                    value += glm::dvec3(surface.emissive) * weight;
+        // Cosine-weighted direction (pdf cos / pi): L itself estimates E / pi.
+        const double u1 = direction_point.x, u2 = direction_point.y;
+        const double s = std::sqrt(u1), phi = 2.0 * pi * u2;
+        const double z = std::sqrt(std::max(0.0, 1.0 - u1));
+        const glm::vec3 w(t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + n * z);
+        ++rays;
+        const RayScene::Hit hit = scene.intersect(origin, w, 0.0f, radius);
+        // Nothing within the radius, or the back of a one-sided surface:
+        // the gather reads neither, so neither sends light here.
+        if (hit.hit && glm::dot(hit.normal, w) < 0.0f) {
+            const glm::vec3 y = origin + w * hit.distance;
+            const RayScene::Surface surface = scene.surface(hit);
+            const glm::dvec3 reflected = reflected_key_light(scene, hit, surface, y);
+            if (reflected != glm::dvec3(0.0)) value += reflected;
+            if (surface.emissive != glm::vec3(0.0f)) {
+                double weight = 1.0;
+                const int e = sample_emitters ? scene.emitter_index(hit.primitive) : -1;
+                if (e >= 0) {
+                    // The density with which emitter sampling would have
+                    // chosen this direction, per unit solid angle.
+                    const RayScene::Emitter& emitter = emitters[std::size_t(e)];
+                    const double distance = double(hit.distance);
+                    const double cos_y = -glm::dot(emitter.normal, glm::dvec3(w));
+                    const double p_emitter = emitter.probability / emitter.area * distance *
+                                             distance / std::max(cos_y, 1e-12);
+                    weight = power_heuristic(z / pi, p_emitter);
                 }
+                value += glm::dvec3(surface.emissive) * weight;
             }
-
-            // A point y on an emitter, uniform over its area (pdf
-            // probability / area; per unit solid angle times d^2 / cos_y).
-            // The definition holds here too: nothing beyond the radius,
-            // nothing from a back face, and y must be the first surface.
-            if (sample_emitters) {
-                const double pick = random.uniform(), v1 = random.uniform(), v2 = random.uniform();
-                const RayScene::Emitter& emitter = emitters[scene.pick_emitter(pick)];
-                const double root = std::sqrt(v1);
-                const glm::dvec3 y =
-                    emitter.p0 + emitter.edge1 * (root * (1.0 - v2)) + emitter.edge2 * (root * v2);
-                const glm::dvec3 to_y = y - origin_d;
-                const double distance = glm::length(to_y);
-                if (distance > 0.0 && distance <= double(radius)) {
-                    const glm::dvec3 d = to_y / distance;
-                    const double cos_x = glm::dot(n, d);
-                    const double cos_y = -glm::dot(emitter.normal, d);
-                    if (cos_x > 0.0 && cos_y > 0.0) {
-                        // Stop just short of y so the emitter does not shadow
-                        // itself.
-                        ++rays;
-                        if (!scene.occluded(origin, glm::vec3(d), 0.0f,
-                                            float(distance * (1.0 - 1e-4)))) {
-                            const double p_emitter =
-                                emitter.probability / emitter.area * distance * distance / cos_y;
-                            // L cos_x / p_emitter times the power heuristic
-                            // weight p_emitter^2 / (p_emitter^2 + p_cos^2),
-                            // as E / pi; written so that no density divides.
-                            const double p_cos = cos_x / pi;
-                            value +=
-                                emitter.emissive * (cos_x * p_emitter /
-                                                    (pi * (p_emitter * p_emitter + p_cos * p_cos)));
-                        }
-                    }
-                }
-            }
-            sum += value;
-            sum_squares += value * value;
         }
+
+        // A point y on an emitter, uniform over its area (pdf probability /
+        // area; per unit solid angle times d^2 / cos_y). The first coordinate
+        // picks the emitter and, rescaled within the emitter's share, places
+        // the point with the second, so the square maps onto all emitters
+        // by area x power and its strata stay strata there. The definition
+        // holds here too: nothing beyond the radius, nothing from a back
+        // face, and y must be the first surface.
+        if (sample_emitters) {
+            double v1 = 0.0;
+            const RayScene::Emitter& emitter = emitters[scene.pick_emitter(emitter_point.x, v1)];
+            const double v2 = emitter_point.y;
+            const double root = std::sqrt(v1);
+            const glm::dvec3 y =
+                emitter.p0 + emitter.edge1 * (root * (1.0 - v2)) + emitter.edge2 * (root * v2);
+            const glm::dvec3 to_y = y - origin_d;
+            const double distance = glm::length(to_y);
+            if (distance > 0.0 && distance <= double(radius)) {
+                const glm::dvec3 d = to_y / distance;
+                const double cos_x = glm::dot(n, d);
+                const double cos_y = -glm::dot(emitter.normal, d);
+                if (cos_x > 0.0 && cos_y > 0.0) {
+                    // Stop just short of y so the emitter does not shadow
+                    // itself.
+                    ++rays;
+                    if (!scene.occluded(origin, glm::vec3(d), 0.0f,
+                                        float(distance * (1.0 - 1e-4)))) {
+                        const double p_emitter =
+                            emitter.probability / emitter.area * distance * distance / cos_y;
+                        // L cos_x / p_emitter times the power heuristic
+                        // weight p_emitter^2 / (p_emitter^2 + p_cos^2), as
+                        // E / pi; written so that no density divides.
+                        const double p_cos = cos_x / pi;
+                        value +=
+                            emitter.emissive *
+                            (cos_x * p_emitter / (pi * (p_emitter * p_emitter + p_cos * p_cos)));
+                    }
+                }
+            }
+        }
+        return value;
+    };
+
+    // Independent replicates: each set scrambles the same Sobol points with
+    // its own seeds, for the direction square and the emitter square apart.
+    // Within a set the points are stratified, so a set's mean varies less
+    // than that of as many independent samples; across sets the means are
+    // independent and identically distributed, so their spread gives an
+    // honest standard error. All sets grow by the same points in lockstep
+    // and stay the same size, so E is the plain mean over all samples.
+    struct Replicate {
+        ScrambledPoints directions, emitter_points;
+        glm::dvec3 sum{0.0};  // of the samples' E / pi
+    };
+    const int replicate_count = std::max(2, budget.replicates);
+    std::vector<Replicate> replicates(static_cast<std::size_t>(replicate_count));
+    Random random{seed};
+    for (Replicate& r : replicates) {
+        r.directions = {random.next(), random.next()};
+        if (sample_emitters) r.emitter_points = {random.next(), random.next()};
+    }
+    auto estimate = [&](long long points, glm::dvec3& error) {
+        glm::dvec3 mean(0.0);
+        for (const Replicate& r : replicates) mean += r.sum / double(points);
+        mean /= double(replicate_count);
+        glm::dvec3 squares(0.0);
+        for (const Replicate& r : replicates) {
+            const glm::dvec3 deviation = r.sum / double(points) - mean;
+            squares += deviation * deviation;
+        }
+        error = pi * glm::sqrt(squares / (double(replicate_count - 1) * double(replicate_count)));
+        return pi * mean;
+    };
+
+    // Points per set between stop tests, and the most rays one more point in
+    // every set can cost: the caps are never passed.
+    const long long step = std::max(1, (budget.batch + replicate_count - 1) / replicate_count);
+    const long long most_per_point = (sample_emitters ? 2LL : 1LL) * replicate_count;
+    const long long ceiling_cap = std::max(budget.max_rays, budget.ceiling_max_rays);
+    long long points = 0, cap = budget.max_rays;
+    glm::dvec3 irradiance(0.0), error(0.0);
+    for (;;) {
+        for (long long i = 0; i < step && (points == 0 || rays + most_per_point <= cap);
+             ++i, ++points) {
+            const std::uint32_t index = std::uint32_t(points);
+            const std::uint32_t reversed_y = reverse_bits(sobol_y(index));
+            for (Replicate& r : replicates)
+                r.sum += sample(
+                    r.directions.point(index, reversed_y),
+                    sample_emitters ? r.emitter_points.point(index, reversed_y) : glm::dvec2(0.0));
+        }
+        irradiance = estimate(points, error);
+        // The error estimate from a few sets is itself noisy, and stopping on
+        // the first low reading would favour readings that are too low; the
+        // margin asks for a reading clearly below the target.
+        const double reading = budget.error_margin * std::max({error.x, error.y, error.z});
+        // Past max_rays only while the error is still at or above the
+        // largest accepted.
+        cap = reading < budget.largest_error ? budget.max_rays : ceiling_cap;
+        if (rays + most_per_point > cap) break;
         if (rays >= budget.min_rays) {
-            const glm::dvec3 error = standard_error(double(samples));
-            const glm::dvec3 e = pi * sum / double(samples);
             const double target =
-                std::max(budget.target_absolute_error,
-                         budget.target_relative_error * std::max({e.x, e.y, e.z}));
-            if (std::max({error.x, error.y, error.z}) < target) break;
+                std::min(budget.largest_error,
+                         std::max(budget.target_absolute_error,
+                                  budget.target_relative_error *
+                                      std::max({irradiance.x, irradiance.y, irradiance.z})));
+            if (reading < target) break;
         }
     }
     IrradianceSample result;
-    const double count = double(std::max<long long>(samples, 1));
-    result.irradiance = pi * sum / count;
-    result.standard_error = standard_error(count);
+    result.irradiance = irradiance;
+    result.standard_error = error;
     result.rays = int(rays);
-    result.samples = int(samples);
+    result.samples = int(points * replicate_count);
     return result;
 }
 

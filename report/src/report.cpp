@@ -468,6 +468,7 @@ ReportResult run_report(const ReportOptions& options) {
             reference.rays.target_error = 0.0;
             reference.irradiance_rays.min_rays = options.rays;
             reference.irradiance_rays.max_rays = options.rays;
+            reference.irradiance_rays.ceiling_max_rays = options.rays;
             reference.irradiance_rays.target_relative_error = 0.0;
             reference.irradiance_rays.target_absolute_error = 0.0;
         }

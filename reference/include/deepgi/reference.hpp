@@ -75,6 +75,10 @@ public:
     // The emitter whose share of [0, 1) in the order of emitters() holds u,
     // so emitter i comes out with its probability.
     std::size_t pick_emitter(double u) const;
+    // The same pick, and where u lies within the emitter's share, rescaled
+    // to [0, 1): uniform and independent of the pick when u is uniform, so
+    // one stratified coordinate both picks the emitter and places the point.
+    std::size_t pick_emitter(double u, double& within) const;
 
 private:
     struct State;
@@ -90,7 +94,7 @@ private:
 struct AoSample {
     double visibility = 1.0;      // AV, the falloff-weighted definition
     double hit_visibility = 1.0;  // 1 - P(hit within r) under cosine weighting
-    double standard_error = 0.0;  // of visibility: sqrt(sample variance / rays)
+    double standard_error = 0.0;  // of visibility: the spread of the sets' means
     // Occlusion (1 - AV) split by who could see the occluder; sums to 1 - AV.
     double occlusion_layer0 = 0.0;
     double occlusion_layer1 = 0.0;
@@ -101,11 +105,17 @@ struct AoSample {
 // Says which depth layer (0, 1) could see a world-space point, or -1.
 using LayerClassifier = std::function<int(glm::vec3)>;
 
+// Directions are stratified in independent sets as for irradiance (see
+// IrradianceSample); the standard error is the spread of the sets' means.
 struct AoRayBudget {
     int min_rays = 1024;
-    int max_rays = 65536;
-    double target_error = 0.004;  // stop once the standard error is below this
-    int batch = 256;
+    int max_rays = 65536;  // never passed: a round that might pass it is not started
+    // Stop once error_margin x the standard error is below target_error; the
+    // margin as IrradianceRayBudget::error_margin.
+    double target_error = 0.004;
+    double error_margin = 1.3;
+    int replicates = 16;  // independently scrambled sets of directions, at least 2
+    int batch = 256;      // rays between checks (rounded up to whole rounds of the sets)
 };
 
 AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
@@ -131,10 +141,16 @@ AoSample ambient_visibility_at(const RayScene& scene, glm::vec3 position, glm::v
 // importance sampling with the power heuristic, so a small bright emitter is
 // found by the technique that finds it best. Emitter points obey the
 // definition too: nothing beyond r, nothing from a back face, nothing
-// hidden. E is the mean of the samples' estimates, the standard error
-// sqrt(sample variance / samples) per channel: the two parts of a sample
-// are summed first, so the error covers both techniques together. Without
-// emitters this is the plain cosine estimator E = pi * mean(L).
+// hidden. Without emitters this is the plain cosine estimator E = pi mean(L).
+//
+// Sampling is stratified in independent replicates: the samples come in
+// `replicates` sets, each the same Sobol (0, 2)-sequence under its own random
+// nested scramble, one for the direction square and one for the emitter
+// square (whose first coordinate picks the triangle and, rescaled, places
+// the point). Each scrambled point is uniform, so every set's mean is
+// unbiased; the sets are independent, so the standard error is the spread of
+// the set means, sqrt(sum (m_k - E)^2 / (K (K - 1))) per channel over K sets.
+// All sets hold the same number of samples, E is the mean of them all.
 struct IrradianceSample {
     glm::dvec3 irradiance{0.0};
     glm::dvec3 standard_error{0.0};
@@ -147,13 +163,26 @@ struct IrradianceSample {
 // Without emitters, rays and samples are the same.
 struct IrradianceRayBudget {
     int min_rays = 1024;
+    // Neither cap is passed: a round of samples that might pass it is not
+    // started. A pixel whose error (times error_margin) is still at or
+    // above largest_error at max_rays goes on up to ceiling_max_rays.
     int max_rays = 16384;
+    int ceiling_max_rays = 65536;
     // Stop, checked after each batch of samples once min_rays are spent, when
-    // every channel's standard error is below
-    // max(target_absolute_error, target_relative_error * largest channel of E).
+    // error_margin x every channel's standard error is below
+    // min(largest_error, max(target_absolute_error,
+    //                        target_relative_error * largest channel of E)).
     double target_relative_error = 0.01;
     double target_absolute_error = 0.002;
-    int batch = 256;  // samples between checks
+    double largest_error = 0.005;
+    // The standard error comes from `replicates` independent estimates, so
+    // it is itself uncertain (about 1 / sqrt(2 (replicates - 1)), 18% for
+    // 16); stopping at the first reading below the target favours low
+    // readings (by about 1.25x), so the reading must be this much below it
+    // for the actual error to be below the target.
+    double error_margin = 1.3;
+    int replicates = 16;  // independently scrambled point sets, at least 2
+    int batch = 256;      // samples between checks (rounded up to whole rounds of the sets)
 };
 
 // The radiance the directly lit scene sends from `position` on the surface
