@@ -87,12 +87,28 @@ TEST_CASE("reference: an unoccluded plane has visibility 1 head-on and at a graz
 // and with int 2 sqrt(1-u^2)/u^2 du = -2 sqrt(1-u^2)/u - 2 asin u,
 //   int_a^1 2 sqrt(1-u^2)/u^2 du = 2 sqrt(1-a^2)/a - 2 acos a, so
 //   occlusion      = ((1 + 2a^2) acos a - 3a sqrt(1 - a^2)) / pi.
-TEST_CASE("reference: the inside corner of two planes matches the closed-form integral",
-          "[reference]") {
+namespace {
+
+// The floor y = 0 and the wall x = 0 (facing +x), 200 m each way.
+deepgi::Scene inside_corner() {
     deepgi::Scene scene;
     const float l = 200.0f;
     add_floor(scene, l);
-    add_quad(scene, {0, 0, l}, {0, 0, -l}, {0, l, -l}, {0, l, l});  // wall x = 0, facing +x
+    add_quad(scene, {0, 0, l}, {0, 0, -l}, {0, l, -l}, {0, l, l});
+    return scene;
+}
+
+// The corner's occlusion at a = x / r (derived above; 0 from a = 1 on).
+double inside_corner_occlusion(double a) {
+    const double c = std::min(a, 1.0);
+    return ((1 + 2 * c * c) * std::acos(c) - 3 * c * std::sqrt(1 - c * c)) / glm::pi<double>();
+}
+
+}  // namespace
+
+TEST_CASE("reference: the inside corner of two planes matches the closed-form integral",
+          "[reference]") {
+    const deepgi::Scene scene = inside_corner();
     const deepgi::RayScene rays(scene);
     const float radius = 0.5f;
     deepgi::AoRayBudget budget;
@@ -102,8 +118,7 @@ TEST_CASE("reference: the inside corner of two planes matches the closed-form in
         const deepgi::AoSample s =
             deepgi::ambient_visibility_at(rays, x, {0, 1, 0}, radius, budget, 12345u);
         const double c = std::min(a, 1.0);
-        const double occlusion =
-            ((1 + 2 * c * c) * std::acos(c) - 3 * c * std::sqrt(1 - c * c)) / glm::pi<double>();
+        const double occlusion = inside_corner_occlusion(a);
         const double hit_occlusion = (std::acos(c) - c * std::sqrt(1 - c * c)) / glm::pi<double>();
         INFO("a = " << a << ", standard error " << s.standard_error);
         REQUIRE(s.standard_error < 0.005);
@@ -124,14 +139,11 @@ TEST_CASE("reference: the inside corner of two planes matches the closed-form in
 // falloff's variance under cosine weighting (E[f^2] by the midpoint rule).
 TEST_CASE("reference: ambient visibility's standard error matches the spread over seeds",
           "[reference]") {
-    deepgi::Scene scene;
-    const float l = 200.0f;
-    add_floor(scene, l);
-    add_quad(scene, {0, 0, l}, {0, 0, -l}, {0, l, -l}, {0, l, l});  // wall x = 0, facing +x
+    const deepgi::Scene scene = inside_corner();
     const deepgi::RayScene rays(scene);
     const float radius = 0.5f;
     const double a = 0.3, pi = glm::pi<double>();
-    const double occlusion = ((1 + 2 * a * a) * std::acos(a) - 3 * a * std::sqrt(1 - a * a)) / pi;
+    const double occlusion = inside_corner_occlusion(a);
     // E[f^2] over cosine-weighted directions: a direction (theta, phi) from
     // X = (a r, 0, z) reaches the wall at d = a r / (sin theta |cos phi|)
     // when it heads towards it (cos phi < 0); f = 1 - d^2 / r^2 within r.
