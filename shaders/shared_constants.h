@@ -49,10 +49,6 @@
 #define DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE 2
 #define DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION 3
 
-// Temporal filters rotate the gather patterns through this many angles, one
-// per frame, then repeat (FrameConstants.temporal_phase counts them).
-#define DEEPGI_TEMPORAL_CYCLE 8
-
 // Vertex attribute locations.
 #define DEEPGI_ATTRIBUTE_POSITION 0
 #define DEEPGI_ATTRIBUTE_NORMAL 1

@@ -1,4 +1,5 @@
-// The layer count and the values of the renderer's enums, shared by GLSL and C++: the C++ enums in
+// The layer count, the temporal rotation cycle and the values of the
+// renderer's enums, shared by GLSL and C++: the C++ enums in
 // runtime/include/deepgi/settings.hpp take their values from these, so the
 // two sides cannot disagree. Only #define lines, so it can be included
 // anywhere (also from the public settings header).
@@ -6,6 +7,13 @@
 #define DEEPGI_SHARED_ENUMS_H
 
 #define DEEPGI_LAYER_COUNT 2  // deep G-buffer layers
+
+// Temporal filters rotate the gather patterns through this many angles, one
+// per frame, then repeat (FrameConstants.temporal_phase counts them). Public,
+// as the layer count is: a static camera's history is the mean of every
+// rotation after 1 + DEEPGI_TEMPORAL_CYCLE frames, which the report and the
+// accuracy test measure.
+#define DEEPGI_TEMPORAL_CYCLE 8
 
 #define DEEPGI_GENERATOR_PEEL 0
 #define DEEPGI_GENERATOR_PREVIOUS 1

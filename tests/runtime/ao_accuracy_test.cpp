@@ -7,7 +7,6 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
-#include "shader_shared.hpp"  // DEEPGI_TEMPORAL_CYCLE
 #include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
