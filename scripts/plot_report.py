@@ -323,6 +323,24 @@ def rays_text(rays):
     return f"{rays} rays per pixel"
 
 
+def stage_means(table, study, pattern):
+    """The mean error of each stage of the frame (first frame raw and blurred,
+    then after a whole rotation cycle of a still camera: the temporal filter's
+    history and its blur), for columns named by `pattern`; None when the
+    temporal stage was not measured."""
+    stages = (("raw", "first frame raw"), ("blur", "blurred"),
+              ("temporal", "after a whole rotation cycle, the temporal history"),
+              ("accum", "blurred"))
+    parts = []
+    for stage, label in stages:
+        values = [table.value(pattern.format(stage), "optimal", n) for n in study]
+        values = [v for v in values if v is not None]
+        if not values:
+            return None
+        parts.append(f"{label} {fmt(sum(values) / len(values))}")
+    return ", ".join(parts)
+
+
 def bias_trend(truth):
     """What the radiosity bias does as N grows, from the first and last N."""
     if len(truth) < 2:
@@ -363,7 +381,13 @@ def summary(directory, rows, info, discrepancy_series, images):
                           ("ref_raw_mae", "MAE against the reference, before the blur"),
                           ("ref_blur_mae", "MAE against the reference, after the blur"),
                           ("ref_blur_bias", "Bias against the reference, after the blur"),
-                          ("rad_conv_raw_rel_mae", "Radiosity: relative MAE against converged, raw")):
+                          ("ref_accum_mae", "MAE against the reference, after the blur, still camera "
+                           "after a whole rotation cycle"),
+                          ("rad_conv_raw_rel_mae", "Radiosity: relative MAE against converged, raw"),
+                          ("rad_ref_blur_rel_mae", "Radiosity: relative MAE against the reference, "
+                           "after the blur"),
+                          ("rad_ref_accum_rel_mae", "Radiosity: relative MAE against the reference, "
+                           "after the blur, still camera after a whole rotation cycle")):
         if all(table.value(column, p, n, top) is None for p in patterns for n in taps):
             continue
         add(f"**{title}**\n")
@@ -518,26 +542,25 @@ def summary(directory, rows, info, discrepancy_series, images):
                          f"{fmt(table.value('rad_conv_raw_rel_mae', 'optimal', n), 3)})")
         add("- **Radiosity** (relative MAE of layer-0 irradiance against its own converged gather, "
             "same pattern as the AO): lowest per N: " + "; ".join(parts) + ".")
-        truth = [(n, table.value("rad_ref_rel_mae", "optimal", n),
-                  table.value("rad_ref_rel_bias", "optimal", n)) for n in study]
+        truth = [(n, table.value("rad_ref_blur_rel_mae", "optimal", n),
+                  table.value("rad_ref_blur_rel_bias", "optimal", n)) for n in study]
         truth = [(n, e, b) for n, e, b in truth if e is not None and b is not None]
         if truth:
             add("- **Radiosity against the ray-traced one-bounce irradiance** (optimal tau, blurred "
                 "first frame after a cut, relative to the truth's mean): " +
                 "; ".join(f"N = {n}: MAE {fmt(e, 3)}, bias {b:+.3f}" for n, e, b in truth) +
                 "." + bias_trend(truth))
+            stages = stage_means(table, study, "rad_ref_{}_rel_mae")
+            if stages:
+                add("- **Radiosity by stage** (optimal tau, relative MAE against the truth, mean "
+                    f"over N = {', '.join(str(n) for n in study)}): " + stages + ".")
         else:
             add("- **Radiosity against the truth:** the reference traced no irradiance, so "
                 "those columns are empty.")
-    temporal = [(table.value("ref_blur_mae", "optimal", n), table.value("ref_temporal_mae", "optimal", n))
-                for n in study] if study else []
-    temporal = [(a, b) for a, b in temporal if a is not None and b is not None]
-    if temporal:
-        add("- **Temporal accumulation** (optimal tau, MAE against the reference, mean over "
-            f"N = {', '.join(str(n) for n in study)}): after the blur of one frame "
-            f"{fmt(sum(a for a, _ in temporal) / len(temporal))}, after "
-            "the temporal filter's history (before the blur) "
-            f"{fmt(sum(b for _, b in temporal) / len(temporal))}.")
+    stages = stage_means(table, study, "ref_{}_mae") if study else None
+    if stages:
+        add("- **AO by stage** (optimal tau, MAE against the reference, mean over "
+            f"N = {', '.join(str(n) for n in study)}): " + stages + ".")
     else:
         add("- **Temporal accumulation:** this build has no temporal AO output, so those columns are empty.")
 

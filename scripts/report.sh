@@ -5,6 +5,8 @@
 # "report:begin" and "report:end" markers with the run's summary.md.
 # usage: scripts/report.sh [BUILD_DIR] [extra `deepgi report` flags]
 # Extra flags override the defaults (CLI11 keeps the last value given).
+# --warmup 1 --frames 7 times the 8 static frames after the cut that the
+# accumulated columns need anyway (1 + DEEPGI_TEMPORAL_CYCLE frames).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -14,7 +16,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT INT TERM
 set -- --scenes ref-crease,ref-slab,ref-board,ref-bench,cornell,atrium,warehouse \
   --taps 4,8,11,16,32,64 --patterns optimal,tau1,golden,m2,m4,m8 --layers 1,2 \
-  --size 320x180 --rays 0 --frames 3 --warmup 1 "$@"
+  --size 320x180 --rays 0 --frames 7 --warmup 1 "$@"
 start=$(date +%s)
 "$build/apps/deepgi/deepgi" report "$@" --output "$work/report"
 seconds=$(( $(date +%s) - start ))

@@ -28,8 +28,15 @@ namespace {
 
 // A temporal AO pass, when the build has one, publishes its accumulated
 // visibility under this name; the report then fills the ref_temporal_*
-// columns from the last timed frame (warmup + frames frames of history).
+// columns after a whole rotation cycle (kAccumulatedFrames).
 constexpr const char* kTemporalAoOutput = "ao-temporal";
+// The temporally filtered layer-0 irradiance (radiosity pass).
+constexpr const char* kTemporalIrradianceOutput = "radiosity-irradiance-layer0";
+
+// Static frames after a cut until the accumulated columns are read: the
+// temporal filters then hold the mean of every rotation of the cycle
+// (frame.cpp), what a still camera converges to.
+constexpr int kAccumulatedFrames = 1 + DEEPGI_TEMPORAL_CYCLE;
 
 // The ray-traced one-bounce irradiance that the radiosity gather estimates
 // (viewport layout as ambient_visibility); empty when it was not traced.
@@ -251,14 +258,26 @@ const std::vector<std::string>& value_columns() {
         "ref_temporal_mae",
         "ref_temporal_rmse",
         "ref_temporal_bias",
+        "ref_accum_mae",
+        "ref_accum_rmse",
+        "ref_accum_bias",
         "ref_pixels",
         "rad_conv_raw_rel_mae",
         "rad_conv_raw_rel_rmse",
         "rad_conv_blur_rel_mae",
         "rad_conv_blur_rel_rmse",
-        "rad_ref_rel_mae",
-        "rad_ref_rel_rmse",
-        "rad_ref_rel_bias",
+        "rad_ref_raw_rel_mae",
+        "rad_ref_raw_rel_rmse",
+        "rad_ref_raw_rel_bias",
+        "rad_ref_blur_rel_mae",
+        "rad_ref_blur_rel_rmse",
+        "rad_ref_blur_rel_bias",
+        "rad_ref_temporal_rel_mae",
+        "rad_ref_temporal_rel_rmse",
+        "rad_ref_temporal_rel_bias",
+        "rad_ref_accum_rel_mae",
+        "rad_ref_accum_rel_rmse",
+        "rad_ref_accum_rel_bias",
     };
     return columns;
 }
@@ -422,6 +441,11 @@ ReportResult run_report(const ReportOptions& options) {
     RenderSettings settings;
     settings.width = options.width;
     settings.height = options.height;
+    // One bounce: the truth is one-bounce irradiance, and after the cycle of
+    // static frames the history would otherwise also hold the bounces that
+    // rho_prop feeds back. A first frame has no history, and the gather does
+    // the same work either way, so no other column moves.
+    settings.radiosity.rho_prop = 0.0f;
     deepgi::validate(settings);
     const FrameLayout layout = frame_layout(settings);
     const int guard = layout.guard;
@@ -552,12 +576,17 @@ ReportResult run_report(const ReportOptions& options) {
                         relative(compare_images(frame.radiosity_blurred,
                                                 reference_frame.radiosity_blurred, surface),
                                  radiosity_blur_scale);
-                    std::optional<ErrorStats> rad_ref;
-                    if (truth_irradiance) {
-                        rad_ref = relative(
-                            compare_images(frame.radiosity_blurred, *truth_irradiance, agreed),
-                            masked_mean(*truth_irradiance, agreed));
-                    }
+                    // Radiosity against the truth, relative to the truth's mean.
+                    auto against_irradiance =
+                        [&](const FloatImage& estimate) -> std::optional<ErrorStats> {
+                        if (!truth_irradiance) return std::nullopt;
+                        return relative(compare_images(estimate, *truth_irradiance, agreed),
+                                        masked_mean(*truth_irradiance, agreed));
+                    };
+                    const std::optional<ErrorStats> rad_ref_raw =
+                        against_irradiance(frame.radiosity_raw);
+                    const std::optional<ErrorStats> rad_ref_blur =
+                        against_irradiance(frame.radiosity_blurred);
 
                     if (pattern == image_pattern && n == image_taps && layers == image_layers) {
                         const std::string stem = file_stem(scene_name);
@@ -567,19 +596,35 @@ ReportResult run_report(const ReportOptions& options) {
                                   crop(frame.ao_blurred, guard, agreed));
                     }
 
-                    // Timing: continuous frames, so history-based passes do
-                    // what they do in an animation.
+                    // Continuous static frames after the cut: the timed ones
+                    // (so history-based passes do what they do in an
+                    // animation), and at least the rest of a rotation cycle,
+                    // after which the accumulated errors are read.
                     std::map<std::string, std::vector<double>> samples;
-                    for (int i = 0; i < options.warmup + options.frames; ++i) {
+                    const int timed_end = options.warmup + options.frames;
+                    std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
+                        rad_ref_accum;
+                    for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
                         renderer.render(camera);
-                        if (i < options.warmup) continue;
-                        for (const auto& timing : renderer.last_timings())
-                            samples[timing.pass].push_back(timing.milliseconds);
-                    }
-                    std::optional<ErrorStats> ref_temporal;
-                    if (has_output(renderer, kTemporalAoOutput)) {
-                        ref_temporal = compare_images(renderer.read_pass_output(kTemporalAoOutput),
-                                                      truth.ambient_visibility, agreed);
+                        if (i >= options.warmup && i < timed_end) {
+                            for (const auto& timing : renderer.last_timings())
+                                samples[timing.pass].push_back(timing.milliseconds);
+                        }
+                        if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
+                        if (has_output(renderer, kTemporalAoOutput)) {
+                            ref_temporal =
+                                compare_images(renderer.read_pass_output(kTemporalAoOutput),
+                                               truth.ambient_visibility, agreed);
+                        }
+                        ref_accum = compare_images(
+                            clamped_visibility(renderer.read_pass_output("ao-blurred")),
+                            truth.ambient_visibility, agreed);
+                        if (has_output(renderer, kTemporalIrradianceOutput)) {
+                            rad_ref_temporal = against_irradiance(
+                                renderer.read_pass_output(kTemporalIrradianceOutput));
+                        }
+                        rad_ref_accum =
+                            against_irradiance(renderer.read_pass_output("radiosity-blurred"));
                     }
 
                     Row row;
@@ -610,23 +655,27 @@ ReportResult run_report(const ReportOptions& options) {
                     add("conv_raw_rmse", conv_raw.rmse);
                     add("conv_blur_mae", conv_blur.mae);
                     add("conv_blur_rmse", conv_blur.rmse);
-                    add("ref_raw_mae", ref_raw.mae);
-                    add("ref_raw_rmse", ref_raw.rmse);
-                    add("ref_raw_bias", ref_raw.bias);
-                    add("ref_blur_mae", ref_blur.mae);
-                    add("ref_blur_rmse", ref_blur.rmse);
-                    add("ref_blur_bias", ref_blur.bias);
-                    add("ref_temporal_mae", field(ref_temporal, &ErrorStats::mae));
-                    add("ref_temporal_rmse", field(ref_temporal, &ErrorStats::rmse));
-                    add("ref_temporal_bias", field(ref_temporal, &ErrorStats::bias));
+                    // MAE, RMSE and bias of one comparison; empty cells where
+                    // the build or the reference cannot measure it.
+                    auto add_stats = [&](const std::string& prefix,
+                                         const std::optional<ErrorStats>& stats) {
+                        add(prefix + "_mae", field(stats, &ErrorStats::mae));
+                        add(prefix + "_rmse", field(stats, &ErrorStats::rmse));
+                        add(prefix + "_bias", field(stats, &ErrorStats::bias));
+                    };
+                    add_stats("ref_raw", ref_raw);
+                    add_stats("ref_blur", ref_blur);
+                    add_stats("ref_temporal", ref_temporal);
+                    add_stats("ref_accum", ref_accum);
                     add("ref_pixels", double(ref_blur.pixels));
                     add("rad_conv_raw_rel_mae", rad_raw.mae);
                     add("rad_conv_raw_rel_rmse", rad_raw.rmse);
                     add("rad_conv_blur_rel_mae", rad_blur.mae);
                     add("rad_conv_blur_rel_rmse", rad_blur.rmse);
-                    add("rad_ref_rel_mae", field(rad_ref, &ErrorStats::mae));
-                    add("rad_ref_rel_rmse", field(rad_ref, &ErrorStats::rmse));
-                    add("rad_ref_rel_bias", field(rad_ref, &ErrorStats::bias));
+                    add_stats("rad_ref_raw_rel", rad_ref_raw);
+                    add_stats("rad_ref_blur_rel", rad_ref_blur);
+                    add_stats("rad_ref_temporal_rel", rad_ref_temporal);
+                    add_stats("rad_ref_accum_rel", rad_ref_accum);
                     log(fmt::format(
                         "{} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {:.4f}, vs "
                         "reference {:.4f} raw {:.4f} blurred",

@@ -174,6 +174,8 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
     std::set<std::string> combinations;
     std::map<int, std::vector<double>> sampling_error;
+    // Each stage's error against the ray-traced truth, summed over the rows.
+    std::map<std::string, double> stage_error;
     int rows = 0;
     while (std::getline(csv, line)) {
         const auto fields = split(line, ',');
@@ -190,7 +192,22 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         CHECK(reference_mae >= 0.0);
         CHECK(reference_mae <= 1.0);
         CHECK(std::stod(fields[column.at("ref_pixels")]) > 100.0);
+        for (const char* stage :
+             {"ref_raw_mae", "ref_temporal_mae", "ref_accum_mae", "rad_ref_raw_rel_mae",
+              "rad_ref_blur_rel_mae", "rad_ref_temporal_rel_mae", "rad_ref_accum_rel_mae"}) {
+            INFO(stage);
+            REQUIRE_FALSE(fields[column.at(stage)].empty());
+            const double error = std::stod(fields[column.at(stage)]);
+            CHECK(std::isfinite(error));
+            CHECK(error >= 0.0);
+            stage_error[stage] += error;
+        }
     }
+    // A whole rotation cycle of a still camera averages eight rotations, so
+    // the temporal filters' history is nearer the truth than a first frame's
+    // raw gather, for AO and for radiosity alike.
+    CHECK(stage_error["ref_temporal_mae"] < stage_error["ref_raw_mae"]);
+    CHECK(stage_error["rad_ref_temporal_rel_mae"] < stage_error["rad_ref_raw_rel_mae"]);
     CHECK(rows == 8);
     CHECK(combinations.size() == 8);
     for (const char* expected : {"optimal/4/1", "optimal/4/2", "optimal/32/1", "optimal/32/2",
