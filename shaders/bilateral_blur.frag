@@ -2,7 +2,13 @@
 // Edge-aware separable blur (design.md 3, step 5): one direction per draw,
 // Gaussian weights from the generated blur_kernel.glsl, each tap further
 // weighted by how well its depth, normal and position agree with the centre's
-// surface, then renormalised. The key (layer 0's linear depth and decoded
+// surface and by how far it lies from the centre in metres, then renormalised.
+//
+// The distance term keeps the blur within a fixed world-space reach (a
+// fraction of the AO radius, BlurSettings::extent): a kernel of fixed pixel
+// radius spans ever more metres on far or grazing surfaces, and there it
+// carried the occlusion next to an occluder onto open floor well past where
+// the true visibility is 1. The key (layer 0's linear depth and decoded
 // normal) comes from bilateral_blur_key.frag, drawn once before both
 // directions.
 //
@@ -30,7 +36,8 @@ layout(binding = DEEPGI_UNIT_BLUR_KEY) uniform sampler2D key;  // xyz: camera-sp
 
 layout(location = DEEPGI_UNIFORM_BLUR_DIRECTION) uniform ivec2 direction;
 // x: depth tolerance (fraction of the centre depth), y: normal power,
-// z: tangent-plane tolerance (fraction of the centre depth)
+// z: tangent-plane tolerance (fraction of the centre depth), w: world extent
+// (m; 0: no limit)
 layout(location = DEEPGI_UNIFORM_BLUR_PARAMETERS) uniform vec4 blur_parameters;
 
 layout(location = 0) out vec4 out_value0;
@@ -57,6 +64,10 @@ void main() {
   float depth_tolerance = blur_parameters.x * depth;
   float normal_power = blur_parameters.y;
   float plane_tolerance = blur_parameters.z * depth;
+  float world_extent = blur_parameters.w;
+  // The floor keeps the inverse finite (GLSL leaves x / 0 undefined) for
+  // extents whose square underflows; they reject every tap either way.
+  float inverse_extent_squared = world_extent > 0.0 ? 1.0 / max(world_extent * world_extent, 1.0e-30) : 0.0;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = centre_key.xyz;
   ivec2 size = textureSize(source0, 0);
@@ -76,8 +87,10 @@ void main() {
     vec3 tap_position = camera_position_at(vec2(tap) + 0.5, tap_depth, frame.internal_size, frame.camera_ray_scale);
     float depth_weight = max(0.0, 1.0 - abs(tap_depth - depth) / depth_tolerance);
     float normal_weight = pow(max(dot(tap_normal, normal), 0.0), normal_power);
-    float plane_weight = max(0.0, 1.0 - abs(dot(tap_position - position, normal)) / plane_tolerance);
-    float weight = BLUR_WEIGHTS[k + BLUR_RADIUS] * depth_weight * normal_weight * plane_weight;
+    vec3 offset = tap_position - position;
+    float plane_weight = max(0.0, 1.0 - abs(dot(offset, normal)) / plane_tolerance);
+    float distance_weight = max(0.0, 1.0 - dot(offset, offset) * inverse_extent_squared);
+    float weight = BLUR_WEIGHTS[k + BLUR_RADIUS] * depth_weight * normal_weight * plane_weight * distance_weight;
     sum0 += texelFetch(source0, tap, 0) * weight;
 #if BLUR_SOURCES > 1
     sum1 += texelFetch(source1, tap, 0) * weight;

@@ -314,6 +314,10 @@ int main(int argc, char** argv) {
                    "Blur: distance (m) from the centre's tangent plane at which a tap weighs "
                    "nothing")
         ->capture_default_str();
+    app.add_option("--blur-extent", options.blur.extent,
+                   "Blur: world-space reach as a fraction of the AO radius; a tap that far from "
+                   "the centre weighs nothing (0: no limit)")
+        ->capture_default_str();
     app.add_option("--radiosity-layers", options.radiosity.layers,
                    fmt::format("Deep radiosity: G-buffer layers gathered, 1 to {}",
                                deepgi::limits::max_radiosity_layers))

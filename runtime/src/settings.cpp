@@ -176,6 +176,8 @@ void validate(const RenderSettings& settings) {
         throw InputError("--blur-normal-power must be a finite number > 0");
     if (!finite_positive(blur.plane_tolerance))
         throw InputError("--blur-plane-tolerance must be a finite number > 0");
+    if (!std::isfinite(blur.extent) || blur.extent < 0.0f)
+        throw InputError("--blur-extent must be a finite number >= 0");
     if (!unit_interval(radiosity.rho_prop))
         throw InputError("--rho-prop must be a number in [0, 1]");
     if (radiosity.layers < 1 || radiosity.layers > limits::max_radiosity_layers) {
@@ -196,7 +198,7 @@ namespace {
 
 // Slider ranges sit inside validate()'s limits; where validate() has no upper
 // limit the slider stops at what is still useful in the built-in scenes.
-const std::array<NumericSetting, 20> numeric_table = {{
+const std::array<NumericSetting, 21> numeric_table = {{
     {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
      DEEPGI_FLOAT_FIELD(min_separation)},
     {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
@@ -232,6 +234,8 @@ const std::array<NumericSetting, 20> numeric_table = {{
      DEEPGI_FLOAT_FIELD(blur.normal_power)},
     {"blur-plane-tolerance", "plane tolerance (m)", "blur", false, 0.001f, 1.0f, true,
      DEEPGI_FLOAT_FIELD(blur.plane_tolerance)},
+    {"blur-extent", "extent (x AO radius, 0: none)", "blur", false, 0.0f, 4.0f, false,
+     DEEPGI_FLOAT_FIELD(blur.extent)},
 }};
 
 #undef DEEPGI_FLOAT_FIELD

@@ -63,7 +63,8 @@ struct Signal {
 // only the blur's arithmetic separates it from the CPU evaluation.
 std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& guide,
                                      const std::vector<Signal>& sources,
-                                     const BilateralBlurParameters& parameters = {}) {
+                                     const BilateralBlurParameters& parameters = {},
+                                     float world_extent = 0.0f) {
     const int w = guide.width;
     const int h = guide.height;
     shader_shared::FrameConstants constants{};
@@ -98,6 +99,7 @@ std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& gu
     gl::VertexArray empty = gl::create_vertex_array();
 
     BilateralBlur blur = create_bilateral_blur(loader, int(sources.size()), parameters);
+    blur.world_extent = world_extent;
     resize_bilateral_blur(blur, w, h, formats);
     run_bilateral_blur(blur, input_names, depth.get(), normal.get(), empty.get());
     std::vector<Signal> outputs;
@@ -114,8 +116,11 @@ std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& gu
 // Runs the pass on `source` (one float per pixel) and returns the output.
 std::vector<float> run_blur(const ShaderLoader& loader, const Guide& guide,
                             const std::vector<float>& source,
-                            const BilateralBlurParameters& parameters = {}) {
-    return run_blur_sources(loader, guide, {Signal{1, source}}, parameters).front().values;
+                            const BilateralBlurParameters& parameters = {},
+                            float world_extent = 0.0f) {
+    return run_blur_sources(loader, guide, {Signal{1, source}}, parameters, world_extent)
+        .front()
+        .values;
 }
 
 // The shader's decode of an octahedral normal stored as RG16F.
@@ -133,11 +138,13 @@ glm::vec3 decode_stored_normal(glm::vec3 n) {
 // horizontal then vertical, every source with the same weights:
 //   out = (w_0 v_0 + sum_k w_k g_d g_n g_p v_k) / (w_0 + sum_k w_k g_d g_n g_p)
 //   g_d = max(0, 1 - |d_k - d| / (t_d d)), g_n = max(n_k.n, 0)^p,
-//   g_p = max(0, 1 - |(P_k - P).n| / (t_p d)); sky (d = 0) passes through and
-// is never a tap.
+//   g_p = max(0, 1 - |(P_k - P).n| / (t_p d)),
+//   g_e = max(0, 1 - |P_k - P|^2 / e^2) (1 when e = 0, no world extent);
+// sky (d = 0) passes through and is never a tap.
 std::vector<Signal> cpu_blur(const Guide& guide, std::vector<Signal> sources,
                              const spiral::codegen::BlurKernel& kernel,
-                             const BilateralBlurParameters& parameters = {}) {
+                             const BilateralBlurParameters& parameters = {},
+                             double world_extent = 0.0) {
     const int w = guide.width;
     const int h = guide.height;
     std::vector<glm::vec3> normal(guide.normal.size());
@@ -177,8 +184,13 @@ std::vector<Signal> cpu_blur(const Guide& guide, std::vector<Signal> sources,
                     const double g_p =
                         std::max(0.0, 1.0 - std::abs(double(glm::dot(position(tx, ty) - p, n))) /
                                                 (double(parameters.plane_tolerance) * depth));
-                    taps.emplace_back(
-                        tap, kernel.weights[std::size_t(k + kernel.radius)] * g_d * g_n * g_p);
+                    const glm::dvec3 offset(position(tx, ty) - p);
+                    const double g_e = world_extent > 0.0
+                                           ? std::max(0.0, 1.0 - glm::dot(offset, offset) /
+                                                                     (world_extent * world_extent))
+                                           : 1.0;
+                    taps.emplace_back(tap, kernel.weights[std::size_t(k + kernel.radius)] * g_d *
+                                               g_n * g_p * g_e);
                 }
                 double total = 0.0;
                 for (const auto& [tap, weight] : taps) total += weight;
@@ -390,6 +402,35 @@ TEST_CASE("blur: on rough guides the blur equals a CPU evaluation of its formula
                          cpu_blur(guide, input, spiral::codegen::gaussian_kernel(3, 1.1), loose)
                              .front()
                              .values) <= 1e-4f);
+}
+
+TEST_CASE("blur: taps weigh (1 - d^2 / e^2) by their distance in metres, none past the extent",
+          "[blur]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const Guide guide = rough_patchwork(61, 43);
+    const std::vector<Signal> input = {Signal{1, random_values(61 * 43, 3)}};
+    const std::vector<float> unlimited = run_blur(loader, guide, input.front().values);
+
+    SECTION("an extent within the kernel's reach equals the CPU evaluation") {
+        // Neighbouring pixels lie 0.023 to 0.09 m apart on these tiles
+        // (depth 1 to 3.8), so 0.08 m cuts the kernel short on most of them.
+        const float extent = 0.08f;
+        const std::vector<float> gpu = run_blur(loader, guide, input.front().values, {}, extent);
+        const std::vector<Signal> expected =
+            cpu_blur(guide, input, build_kernel(), {}, double(extent));
+        CHECK(max_difference(gpu, expected.front().values) <= 1e-4f);
+        // Control: the extent changed the result.
+        CHECK(max_difference(gpu, unlimited) > 0.05f);
+    }
+    SECTION("an extent shorter than the pixel spacing leaves every pixel as it was") {
+        const std::vector<float> gpu = run_blur(loader, guide, input.front().values, {}, 0.01f);
+        CHECK(max_difference(gpu, input.front().values) <= 1e-6f);
+    }
+    SECTION("an extent far beyond the kernel's reach is no limit") {
+        const std::vector<float> gpu = run_blur(loader, guide, input.front().values, {}, 1e4f);
+        CHECK(max_difference(gpu, unlimited) <= 1e-6f);
+    }
 }
 
 TEST_CASE("blur: two sources blurred together get the weights each gets alone", "[blur]") {

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 using namespace deepgi;
 
@@ -132,6 +133,7 @@ TEST_CASE("live settings: an edited blur filters as a renderer built with it",
     sharp.blur.depth_tolerance = 0.01f;
     sharp.blur.normal_power = 32.0f;
     sharp.blur.plane_tolerance = 0.002f;
+    sharp.blur.extent = 0.1f;
 
     Renderer live(scene, base, loader);
     live.render(scene.default_camera);
@@ -165,4 +167,9 @@ TEST_CASE("live settings: bad blur values are refused with the option's name",
     settings = small_settings();
     settings.blur.plane_tolerance = -1.0f;
     CHECK_THROWS_WITH(validate(settings), "--blur-plane-tolerance must be a finite number > 0");
+    settings = small_settings();
+    settings.blur.extent = -0.5f;
+    CHECK_THROWS_WITH(validate(settings), "--blur-extent must be a finite number >= 0");
+    settings.blur.extent = std::numeric_limits<float>::infinity();
+    CHECK_THROWS_WITH(validate(settings), "--blur-extent must be a finite number >= 0");
 }

@@ -166,6 +166,11 @@ struct BlurSettings {
     float depth_tolerance = 0.1f;   // taps whose depth differs by this fraction weigh nothing
     float normal_power = 8.0f;      // weight * max(dot(n_tap, n_centre), 0)^power
     float plane_tolerance = 0.02f;  // distance from the centre's tangent plane that weighs nothing
+    // World-space reach, as a fraction of the AO radius: a tap d metres from
+    // the centre weighs (1 - d^2 / (extent r)^2), nothing beyond; 0: no limit.
+    // AO changes over distances of the order of r, and a blur of fixed pixel
+    // radius spans more metres the further and the more grazing the surface.
+    float extent = 0.5f;
 };
 
 struct RenderSettings {

@@ -55,6 +55,7 @@ public:
     }
 
     void run(FrameResources& frame) override {
+        apply_blur_settings(blur_, *frame.settings);
         run_bilateral_blur(blur_, frame.texture("ao.temporal"), frame.texture("depth_pyramid"),
                            frame.texture("gbuffer.normal"), frame.empty_vertex_array);
         frame.publish("ao.blurred", blur_.output.get());
@@ -92,8 +93,7 @@ public:
     }
 
     void run(FrameResources& frame) override {
-        // Read every frame, so the window's sliders take effect without a rebuild.
-        blur_.parameters = frame.settings->blur;
+        apply_blur_settings(blur_, *frame.settings);
         const GLuint sources[] = {frame.texture("ao.temporal"),
                                   frame.texture("radiosity.irradiance.layer0")};
         run_bilateral_blur(blur_, sources, frame.texture("depth_pyramid"),
@@ -146,6 +146,15 @@ BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
     return create_bilateral_blur(loader, 1, parameters);
 }
 
+void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings) {
+    check_parameters(settings.blur);
+    const float extent = settings.blur.extent * settings.ao.radius;
+    if (!std::isfinite(extent) || extent < 0.0f)
+        throw InputError("the bilateral blur's world extent must be a finite number >= 0");
+    blur.parameters = settings.blur;
+    blur.world_extent = extent;
+}
+
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
                            std::span<const GLenum> internal_formats) {
     if (int(internal_formats.size()) != blur.source_count)
@@ -186,7 +195,8 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
     const GLuint program = blur.program.get();
     glUseProgram(program);
     glProgramUniform4f(program, DEEPGI_UNIFORM_BLUR_PARAMETERS, blur.parameters.depth_tolerance,
-                       blur.parameters.normal_power, blur.parameters.plane_tolerance, 0.0f);
+                       blur.parameters.normal_power, blur.parameters.plane_tolerance,
+                       blur.world_extent);
     glBindTextureUnit(DEEPGI_UNIT_BLUR_KEY, blur.key.get());
 
     for (int i = 0; i < blur.source_count; ++i)

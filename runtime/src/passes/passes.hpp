@@ -50,7 +50,13 @@ struct BilateralBlur {
     int width = 0;
     int height = 0;
     BilateralBlurParameters parameters;
+    // Metres: a tap this far from the centre weighs nothing (0: no limit).
+    // The settings give it as a fraction of the AO radius (BlurSettings::extent).
+    float world_extent = 0.0f;
 };
+// Takes the settings' edge weights and world extent (read every frame, so the
+// window's sliders act without a rebuild); throws InputError for bad ones.
+void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings);
 // Builds the program for `source_count` (1 or 2) sources; throws InputError
 // for bad parameters.
 BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count,

@@ -153,6 +153,7 @@ public:
     }
 
     void run(FrameResources& frame) override {
+        apply_blur_settings(blur_, *frame.settings);
         run_bilateral_blur(blur_, frame.texture("radiosity.irradiance.layer0"),
                            frame.texture("depth_pyramid"), frame.texture("gbuffer.normal"),
                            frame.empty_vertex_array);
