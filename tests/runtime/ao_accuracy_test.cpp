@@ -129,10 +129,11 @@ const std::map<std::string, double>& short_of_target() {
         // The G-buffer lacks occluders hidden from both layers (reference
         // split: they occlude 0.025 on average on warehouse, more than its
         // whole bias), and creases are noisy in one frame (docs/deep-sao.md).
-        // Measured: cornell 0.040 / 0.031 (first / accumulated); warehouse
-        // MAE 0.038 / 0.035, bias +0.025 / +0.025, and 2 of 10304 open
-        // pixels below 0.99 before the blur.
-        {"cornell/mae/first", 0.045},         {"cornell/mae/accumulated", 0.035},
+        // Measured: cornell 0.040 in the first frame (0.029 accumulated,
+        // a hard check since the blur's world extent); warehouse MAE
+        // 0.037 / 0.033, bias +0.025 / +0.025, and 2 of 10304 open pixels
+        // below 0.99 before the blur.
+        {"cornell/mae/first", 0.045},
         {"warehouse/mae/first", 0.042},       {"warehouse/bias/first", 0.028},
         {"warehouse/mae/accumulated", 0.039}, {"warehouse/bias/accumulated", 0.028},
         {"warehouse/open/first", 5.0},        {"warehouse/open/accumulated", 5.0},
