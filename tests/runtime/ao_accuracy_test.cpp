@@ -131,12 +131,19 @@ const std::map<std::string, double>& short_of_target() {
         // whole bias), and creases are noisy in one frame (docs/deep-sao.md).
         // Measured: cornell 0.040 in the first frame (0.029 accumulated,
         // a hard check since the blur's world extent); warehouse MAE
-        // 0.037 / 0.033, bias +0.025 / +0.025, and 2 of 10304 open pixels
-        // below 0.99 before the blur.
+        // 0.037 / 0.033, bias +0.025 / +0.025.
         {"cornell/mae/first", 0.045},
-        {"warehouse/mae/first", 0.042},       {"warehouse/bias/first", 0.028},
-        {"warehouse/mae/accumulated", 0.039}, {"warehouse/bias/accumulated", 0.028},
-        {"warehouse/open/first", 5.0},        {"warehouse/open/accumulated", 5.0},
+        {"warehouse/mae/first", 0.042},
+        {"warehouse/bias/first", 0.028},
+        {"warehouse/mae/accumulated", 0.039},
+        {"warehouse/bias/accumulated", 0.028},
+        // Open pixels below 0.99 after the blur, which averages in the
+        // occlusion of neighbours within half the AO radius: atrium 32 / 13
+        // and warehouse 19 / 18 of about 13600 and 10300 open pixels.
+        {"atrium/open-blurred/first", 36.0},
+        {"atrium/open-blurred/accumulated", 15.0},
+        {"warehouse/open-blurred/first", 21.0},
+        {"warehouse/open-blurred/accumulated", 20.0},
     };
     return bounds;
 }
@@ -167,9 +174,10 @@ void check_stage(const std::string& name, const std::string& stage, const StageE
     check_target(name, "bias", stage, std::abs(two.bias), 0.01);
     // The second layer only adds occluders; it must not cost accuracy.
     check_target(name, "two-vs-one", stage, two.mae - one.mae, 0.0);
-    // Surfaces with nothing within r stay open in the estimate itself (the
-    // blur may still carry a neighbour's occlusion onto them).
+    // Surfaces with nothing within r stay open in the estimate itself, and
+    // after the blur wherever no occluder lies within its reach.
     check_target(name, "open", stage, double(errors.raw_two_layers.open_dark), 0.0);
+    check_target(name, "open-blurred", stage, double(two.open_dark), 0.0);
     // On the bench behind the posts layer 1 sees occluders layer 0 cannot.
     if (name == "ref-bench") CHECK(two.mae < one.mae - 5e-4);
 }
