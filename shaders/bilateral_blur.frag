@@ -65,8 +65,8 @@ void main() {
   float normal_power = blur_parameters.y;
   float plane_tolerance = blur_parameters.z * depth;
   float world_extent = blur_parameters.w;
-  // The floor keeps the inverse finite (GLSL leaves x / 0 undefined) for
-  // extents whose square underflows; they reject every tap either way.
+  // The floor keeps the inverse finite (GLSL leaves x / 0 undefined) when the
+  // extent's square underflows.
   float inverse_extent_squared = world_extent > 0.0 ? 1.0 / max(world_extent * world_extent, 1.0e-30) : 0.0;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = centre_key.xyz;
