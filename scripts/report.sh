@@ -5,8 +5,9 @@
 # "report:begin" and "report:end" markers with the run's summary.md.
 # usage: scripts/report.sh [BUILD_DIR] [extra `deepgi report` flags]
 # Extra flags override the defaults (CLI11 keeps the last value given).
-# --warmup 1 --frames 7 times the 8 static frames after the cut that the
-# accumulated columns need anyway (1 + DEEPGI_TEMPORAL_CYCLE frames).
+# --warmup 1 --frames 7: the 8 static frames after the cut that the
+# accumulated columns need anyway (1 + DEEPGI_TEMPORAL_CYCLE frames in all),
+# the last 7 of them timed.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
