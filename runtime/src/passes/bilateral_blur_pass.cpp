@@ -147,12 +147,9 @@ BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
 }
 
 void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings) {
-    check_parameters(settings.blur);
-    const float extent = settings.blur.extent * settings.ao.radius;
-    if (!std::isfinite(extent) || extent < 0.0f)
-        throw InputError("the bilateral blur's world extent must be a finite number >= 0");
+    // validate() has checked both factors when the renderer took the settings.
     blur.parameters = settings.blur;
-    blur.world_extent = extent;
+    blur.world_extent = settings.blur.extent * settings.ao.radius;
 }
 
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height,

@@ -55,7 +55,7 @@ struct BilateralBlur {
     float world_extent = 0.0f;
 };
 // Takes the settings' edge weights and world extent (read every frame, so the
-// window's sliders act without a rebuild); throws InputError for bad ones.
+// window's sliders act without a rebuild); the settings are validated ones.
 void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings);
 // Builds the program for `source_count` (1 or 2) sources; throws InputError
 // for bad parameters.
