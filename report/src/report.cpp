@@ -576,12 +576,15 @@ ReportResult run_report(const ReportOptions& options) {
                         relative(compare_images(frame.radiosity_blurred,
                                                 reference_frame.radiosity_blurred, surface),
                                  radiosity_blur_scale);
-                    // Radiosity against the truth, relative to the truth's mean.
+                    // Radiosity against the truth, relative to the truth's mean
+                    // over the compared pixels (the same for every stage).
+                    const double truth_irradiance_mean =
+                        truth_irradiance ? masked_mean(*truth_irradiance, agreed) : 0.0;
                     auto against_irradiance =
                         [&](const FloatImage& estimate) -> std::optional<ErrorStats> {
                         if (!truth_irradiance) return std::nullopt;
                         return relative(compare_images(estimate, *truth_irradiance, agreed),
-                                        masked_mean(*truth_irradiance, agreed));
+                                        truth_irradiance_mean);
                     };
                     const std::optional<ErrorStats> rad_ref_raw =
                         against_irradiance(frame.radiosity_raw);
