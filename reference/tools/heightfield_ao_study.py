@@ -9,7 +9,11 @@ thick each stored surface is, would meet the accuracy targets that deep SAO's
 solid-angle estimator misses. Each stored surface is taken as a slab
 `thickness` metres deep behind it along the view ray; a ray point is inside
 the scene when it lies behind the plane of the layer-0 (or layer-1) surface at
-the pixel it projects to and less than `thickness` beyond that surface's depth.
+the pixel it projects to, behind that pixel's stored depth, and less than the
+thickness beyond it. The thickness is `--thickness` metres, or with
+`--footprint K` K times the depth range the pixel's footprint spans on its
+tangent plane, clamped to [--min-thickness, --thickness]: a surface seen
+edge-on spans a long range of depth in one pixel, one seen head-on almost none.
 The first such point within the radius, refined to where the segment crosses
 that plane, gives the hit distance d, and AV = 1 - mean f(d), f = 1 - d^2 /
 r^2, as the reference defines it. Rays are stratified (a jittered grid on the
@@ -17,8 +21,8 @@ cosine-weighted disk, rotated per pixel), many per pixel and unblurred, so the
 figures show the estimator's bias rather than its noise.
 
 usage: heightfield_ao_study.py DUMP_DIR REFERENCE_DIR --fov DEGREES
-           [--guard PIXELS] [--radius M] [--thickness M] [--rays N]
-           [--steps N] [--layers 1|2]
+           [--guard PIXELS] [--radius M] [--thickness M] [--footprint K]
+           [--min-thickness M] [--rays N] [--steps N] [--layers 1|2]
 DUMP_DIR is `deepgi --headless --dump`, REFERENCE_DIR `deepgi reference`, of
 the same scene and size; --fov is the scene camera's vertical field of view
 (cornell 40, atrium and warehouse 60, the ref-* scenes 50).
@@ -67,6 +71,8 @@ def main():
     parser.add_argument("--guard", type=int, default=18)
     parser.add_argument("--radius", type=float, default=0.5)
     parser.add_argument("--thickness", type=float, default=0.1)
+    parser.add_argument("--footprint", type=float, default=0.0)
+    parser.add_argument("--min-thickness", type=float, default=0.0)
     parser.add_argument("--rays", type=int, default=64)
     parser.add_argument("--steps", type=int, default=48)
     parser.add_argument("--layers", type=int, choices=(1, 2), default=2)
@@ -85,6 +91,18 @@ def main():
     scale_y = math.tan(math.radians(args.fov) / 2.0) * height / (height - 2 * g)
     ray_scale = (scale_y * width / height, scale_y)
     position = [camera_positions(d, ray_scale) for d in depth]
+    thickness = [np.full(d.shape, args.thickness) for d in depth]
+    if args.footprint > 0:
+        # Depth per pixel along x and y on the tangent plane, d z / d ndc =
+        # z n_i scale_i / (n . ray), ray the view ray scaled to unit depth;
+        # the clamp keeps a surface seen edge-on finite.
+        for k in (0, 1):
+            n = normal[k] / np.maximum(np.linalg.norm(normal[k], axis=-1, keepdims=True), 1e-12)
+            ray = position[k] / np.maximum(depth[k], 1e-12)[..., None]
+            facing = np.maximum(np.abs(np.einsum("ijk,ijk->ij", n, ray)), 0.02)
+            span = depth[k] * (np.abs(n[..., 0]) * ray_scale[0] * 2.0 / width +
+                               np.abs(n[..., 1]) * ray_scale[1] * 2.0 / height) / facing
+            thickness[k] = np.clip(args.footprint * span, args.min_thickness, args.thickness)
 
     # The pixels deepgi_compare_reference compares: viewport, both see a surface.
     mask = (depth[0] > 0) & (traced > 0) & (np.abs(depth[0] - traced) <= 1e-3 * traced)
@@ -127,7 +145,12 @@ def main():
                     p = position[layer][py, px]
                     n = normal[layer][py, px]
                     below = np.einsum("ij,ij->i", q - p, n)
-                    inside = live & ~found & (d > 0) & (below < -1e-3 * z) & (z < d + args.thickness)
+                    # Behind the plane alone is not enough: the plane of a
+                    # surface seen edge-on runs along the view ray, and a point
+                    # in front of its stored depth but on the wrong side of it
+                    # would count as inside.
+                    inside = (live & ~found & (d > 0) & (below < -1e-3 * z) & (z > d) &
+                              (z < d + thickness[layer][py, px]))
                     if layer == 1:  # behind layer 0's slab too, or it is layer 0's hit
                         inside &= z > depth[0][py, px]
                     # Where the segment from the previous step crossed the plane.
@@ -141,7 +164,9 @@ def main():
     visibility = 1.0 - occlusion / (side * side)
     error = visibility - truth[pixels]
     open_surface = truth[pixels] >= 0.9999
-    print(f"heightfield AV, thickness {args.thickness} m, {side * side} rays, {args.steps} steps, "
+    shape = (f"{args.footprint} footprints in [{args.min_thickness}, {args.thickness}] m"
+             if args.footprint > 0 else f"{args.thickness} m")
+    print(f"heightfield AV, thickness {shape}, {side * side} rays, {args.steps} steps, "
           f"{args.layers} layer(s): {count} pixels, MAE {np.abs(error).mean():.4f}, "
           f"bias {error.mean():+.4f}, open pixels below 0.99: "
           f"{int((open_surface & (visibility < 0.99)).sum())} of {int(open_surface.sum())}")
