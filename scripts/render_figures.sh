@@ -3,7 +3,8 @@
 # docs/figures/: direct light only; + deep SAO on the environment term;
 # + one bounce of deep radiosity (rho_prop 0); + multiple bounces
 # (rho_prop 1). Every image gets the same frames, so the temporal filter has
-# settled the same way in each. Run after scripts/build.sh:
+# settled the same way in each. Then the first frame's blurred AO of each
+# estimator. Run after scripts/build.sh:
 #   scripts/render_figures.sh [SIZE] [FRAMES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,3 +25,11 @@ render direct --no-ao --no-radiosity --no-environment
 render ao --no-radiosity
 render one-bounce --rho-prop 0
 render bounces --rho-prop 1
+
+# Blurred AO of the first frame, one image per estimator: the solid-angle
+# default and the march (docs/deep-sao.md, "The march").
+for method in solid-angle march; do
+    "$deepgi" --headless --scene cornell --size "$size" --frames 1 --view ao-blurred \
+        --ao-method "$method" --output "$out/cornell-ao-$method.png"
+    echo "wrote $out/cornell-ao-$method.png"
+done

@@ -3,10 +3,14 @@
 // of layer 0 from the spiral taps of the generated ao_taps.glsl, each tap
 // testing both depth layers and keeping the larger occlusion.
 //
+// The march method instead follows DEEPGI_AO_MARCH_RAYS rays through both
+// layers (march_visibility below).
+//
 // Define AO_LAYERS 1 to read layer 0 only (for comparison); the default is 2.
 // The blur that follows keys on the depth pyramid and the G-buffer normal, so
-// the output is visibility alone: in [0, 1] for the published method, signed
-// (at most 1) for the solid-angle method, whose consumers clamp it.
+// the output is visibility alone: in [0, 1] for the published and march
+// methods, signed (at most 1) for the solid-angle method, whose consumers
+// clamp it.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 #include "pixel_rotation.glsl"
@@ -25,7 +29,10 @@ layout(location = DEEPGI_UNIFORM_SAO_MAX_MIP) uniform int max_mip;
 // DEEPGI_AO_METHOD_PUBLISHED: 1 - sqrt(pi/N * sum AO(X, Y)), the published
 // heuristic. DEEPGI_AO_METHOD_SOLID_ANGLE: the obscurance integral of the
 // ray-traced reference, estimated over the visible surface (below).
+// DEEPGI_AO_METHOD_MARCH: the reference's own rays, marched (below).
 layout(location = DEEPGI_UNIFORM_SAO_METHOD) uniform int ao_method;
+// March only: how deep (m) behind each stored surface the scene is taken as solid.
+layout(location = DEEPGI_UNIFORM_SAO_THICKNESS) uniform float thickness;
 
 layout(location = 0) out float out_visibility;
 
@@ -84,6 +91,73 @@ float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
   return (1.0 - vv / radius_squared) * max((vn - bias) / sqrt(vv + obscurance_epsilon), 0.0);
 }
 
+// The march estimator: the reference's definition, AV = 1 - mean f(d) over
+// cosine-weighted rays, f(d) = 1 - d^2 / r^2 for the first hit at d < r,
+// estimated with rays marched through the two depth layers. The layers store
+// surfaces, not solids, so each stored surface is taken as a slab `thickness`
+// deep behind it along the view ray; that guess is what lets a ray find the
+// occluders no layer stores (the unseen strip of a wall seen at a grazing
+// angle beside a crease, board undersides), and what darkens open surfaces
+// behind parts thinner than the slab (docs/deep-sao.md, "The march").
+//
+// A step's point q, projected to pixel p, is inside when it lies
+//   - behind the depth stored at p: the plane alone is not enough, as the
+//     plane of a surface seen edge-on runs along the view ray;
+//   - less than `thickness` behind it;
+//   - behind that surface's plane by more than the bias plus 1 mm per metre
+//     of depth, the reconstruction error of a stored point and its normal,
+//     so that a ray leaving X's own surface at a grazing angle does not hit it.
+// The hit distance is where the last segment crosses that plane.
+//
+// Rays: Malley's method on the golden-angle (Vogel) disk, ray i at radius
+// sqrt((i + 1/2) / R) and angle 2 pi frac(i / phi), turned by the pixel's
+// rotation. Steps: evenly spaced over r, offset by one random fraction per
+// pixel that advances by 1/DEEPGI_TEMPORAL_CYCLE with each step of the
+// rotation cycle, so the cycle's frames stratify the step positions too.
+// Every ray contributes at most 1/R: the value is in [0, 1], with no heavy
+// tail for the blur to spread.
+float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, float bias,
+                       mat2 rotation) {
+  // Any tangent frame will do: the rotation randomises the pattern anyway.
+  vec3 tangent = normalize(cross(normal, abs(normal.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 bitangent = cross(normal, tangent);
+  float cycle = frame.temporal_angle * (1.0 / 6.2831855);
+  float offset = fract(float(avalanche32(pixel_rotation_hash(pixel) ^ 0x68e31da4u) >> 8u) * (1.0 / 16777216.0) + cycle);
+  float step_length = radius / float(DEEPGI_AO_MARCH_STEPS);
+  float occlusion = 0.0;
+  for (int i = 0; i < DEEPGI_AO_MARCH_RAYS; ++i) {
+    float angle = 6.2831855 * fract(float(i) * 0.618034);
+    vec2 disk = rotation * vec2(cos(angle), sin(angle)) * sqrt((float(i) + 0.5) / float(DEEPGI_AO_MARCH_RAYS));
+    vec3 direction = tangent * disk.x + bitangent * disk.y + normal * sqrt(max(0.0, 1.0 - dot(disk, disk)));
+    float previous = 0.0;
+    float hit = -1.0;
+    for (int k = 0; k < DEEPGI_AO_MARCH_STEPS && hit < 0.0; ++k) {
+      float t = (float(k) + offset) * step_length;
+      vec3 q = position + direction * t;
+      float z = -q.z;
+      if (z <= frame.camera_ray_scale.z) break;  // in front of the near plane: nothing stored there
+      // Off the guard-banded buffer nothing is known: no occluder.
+      vec2 at = (q.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
+      if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) break;
+      ivec2 p = ivec2(at);
+      vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
+      for (int layer = 0; layer < AO_LAYERS && hit < 0.0; ++layer) {
+        float depth = layer == 0 ? depths.r : depths.g;
+        if (depth <= 0.0 || z <= depth || z >= depth + thickness) continue;
+        vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+        vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
+        float below = dot(q - surface, surface_normal);
+        if (below >= -(bias + 1.0e-3 * z)) continue;
+        float above = dot(position + direction * previous - surface, surface_normal);
+        hit = above > 0.0 ? previous + (t - previous) * above / (above - below) : t;
+      }
+      previous = t;
+    }
+    if (hit >= 0.0) occlusion += max(0.0, 1.0 - hit * hit / (radius * radius));
+  }
+  return 1.0 - occlusion / float(DEEPGI_AO_MARCH_RAYS);
+}
+
 // The level-0 pixel whose depth texel `texel` of `level` holds: walks the
 // rotated-grid choice of depth_pyramid.comp back down to level 0.
 ivec2 source_pixel(ivec2 texel, int level, ivec2 size) {
@@ -114,6 +188,10 @@ void main() {
   mat2 rotation = pixel_rotation(uvec2(pixel));
   // This frame's step of the rotation cycle (frame.cpp), which ao_temporal.frag averages over.
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
+  if (ao_method == DEEPGI_AO_METHOD_MARCH) {
+    out_visibility = pow(march_visibility(uvec2(pixel), position, normal, radius, bias, rotation), intensity);
+    return;
+  }
   ivec2 size = ivec2(frame.internal_size.xy);
 
   // Solid-angle threshold: the G-buffer samples a surface once per pixel, so

@@ -82,6 +82,7 @@
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
 #define DEEPGI_UNIFORM_RADIOSITY_METHOD 37      // int: DEEPGI_RADIOSITY_METHOD_*
+#define DEEPGI_UNIFORM_SAO_THICKNESS 38         // float: slab behind each stored surface (m), march only
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

@@ -1,5 +1,5 @@
-// The layer count, the temporal rotation cycle and the values of the
-// renderer's enums, shared by GLSL and C++: the C++ enums in
+// The layer count, the temporal rotation cycle, the march's ray and step
+// counts and the values of the renderer's enums, shared by GLSL and C++: the C++ enums in
 // runtime/include/deepgi/settings.hpp take their values from these, so the
 // two sides cannot disagree. Only #define lines, so it can be included
 // anywhere (also from the public settings header).
@@ -37,6 +37,13 @@
 
 #define DEEPGI_AO_METHOD_PUBLISHED 0    // 1 - sqrt(pi/N * sum AO(X, Y))
 #define DEEPGI_AO_METHOD_SOLID_ANGLE 1  // the reference's integral over the seen surface
+#define DEEPGI_AO_METHOD_MARCH 2        // the reference's rays, marched through slabs behind both layers
+
+// The march (sao.frag): cosine-weighted rays per pixel and evenly spaced steps
+// per ray. Steps matter more than rays: with 8 steps a ray jumps over the
+// near field of a crease (docs/deep-sao.md, "The march").
+#define DEEPGI_AO_MARCH_RAYS 4
+#define DEEPGI_AO_MARCH_STEPS 16
 
 #define DEEPGI_RADIOSITY_METHOD_PUBLISHED 0  // 2 pi / M * sum B cos_x over the M used samples
 #define DEEPGI_RADIOSITY_METHOD_AREA 1       // the reference's integral over the seen surface

@@ -255,7 +255,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--ao-method", options.ao_method,
                    fmt::format("Deep SAO estimator: {} (solid-angle is the reference's "
-                               "integral, published is 1 - sqrt(...))",
+                               "integral over the seen surface, march marches its rays through "
+                               "slabs behind both layers, published is 1 - sqrt(...))",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
@@ -267,6 +268,10 @@ int main(int argc, char** argv) {
                     deepgi::default_ao_bias(deepgi::AoMethod::solid_angle),
                     deepgi::default_ao_bias(deepgi::AoMethod::published)));
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
+        ->capture_default_str();
+    app.add_option("--ao-thickness", options.ao.thickness,
+                   "Deep SAO, march: the scene is taken as solid this deep behind every stored "
+                   "surface (m)")
         ->capture_default_str();
     app.add_option("--ao-q", options.ao.q,
                    fmt::format("Deep SAO: tap radius (px) per MIP level step (at least {})",

@@ -46,8 +46,9 @@ constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
     {TimingMode::gpu, "gpu"},
 }};
 
-constexpr std::array<EnumName<AoMethod>, 2> ao_method_table = {{
+constexpr std::array<EnumName<AoMethod>, 3> ao_method_table = {{
     {AoMethod::solid_angle, "solid-angle"},
+    {AoMethod::march, "march"},
     {AoMethod::published, "published"},
 }};
 
@@ -151,6 +152,8 @@ void validate(const RenderSettings& settings) {
         throw InputError(
             fmt::format("--ao-layers must be 1 or {}, got {}", limits::max_ao_layers, ao.layers));
     }
+    if (!finite_positive(ao.thickness))
+        throw InputError("--ao-thickness must be a finite number of metres > 0");
     if (ao.max_mip_level < 0 || ao.max_mip_level > limits::max_ao_mip_level) {
         throw InputError(fmt::format("--ao-max-mip must be in [0, {}], got {}",
                                      limits::max_ao_mip_level, ao.max_mip_level));
@@ -198,7 +201,7 @@ namespace {
 
 // Slider ranges sit inside validate()'s limits; where validate() has no upper
 // limit the slider stops at what is still useful in the built-in scenes.
-const std::array<NumericSetting, 21> numeric_table = {{
+const std::array<NumericSetting, 22> numeric_table = {{
     {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
      DEEPGI_FLOAT_FIELD(min_separation)},
     {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
@@ -216,6 +219,8 @@ const std::array<NumericSetting, 21> numeric_table = {{
     {"ao-max-mip", "max MIP level", "ao", true, 0.0f, float(limits::max_ao_mip_level), false,
      DEEPGI_INT_FIELD(ao.max_mip_level)},
     {"ao-alpha", "temporal alpha", "ao", false, 0.0f, 0.99f, false, DEEPGI_FLOAT_FIELD(ao.alpha)},
+    {"ao-thickness", "thickness (m, march)", "ao", false, 0.01f, 1.0f, true,
+     DEEPGI_FLOAT_FIELD(ao.thickness)},
     {"radiosity-radius", "radius (m)", "radiosity", false, 0.05f, 10.0f, true,
      DEEPGI_FLOAT_FIELD(radiosity.radius)},
     {"radiosity-boost", "boost", "radiosity", false, 0.0f, 1.0f, false,

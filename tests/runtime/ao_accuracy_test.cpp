@@ -22,12 +22,14 @@ namespace {
 // 192x108 keeps every scene's reference under a few seconds on two cores.
 constexpr int width = 192, height = 108;
 
-RenderSettings accuracy_settings(int layers) {
+RenderSettings accuracy_settings(int layers, AoMethod method = AoMethod::solid_angle) {
     RenderSettings settings;
     settings.width = width;
     settings.height = height;
     settings.shadow_map_size = 64;
     settings.ao.layers = layers;
+    settings.ao.method = method;
+    settings.ao.bias = default_ao_bias(method);
     return settings;
 }
 
@@ -82,8 +84,7 @@ struct SceneErrors {
     StageErrors accumulated;  // after accumulated_frames static frames
 };
 
-SceneErrors measure_scene(const std::string& name) {
-    const Scene scene = load_scene(name);
+ReferenceImages trace_truth(const Scene& scene) {
     ReferenceSettings reference;
     reference.render = accuracy_settings(2);
     // A standard error of 0.006 per pixel adds about 0.005 to a mean absolute
@@ -92,13 +93,15 @@ SceneErrors measure_scene(const std::string& name) {
     reference.rays.target_error = 0.006;
     reference.threads = 2;
     const RayScene rays(scene);
-    const ReferenceImages truth = render_reference(rays, scene.default_camera, reference);
+    return render_reference(rays, scene.default_camera, reference);
+}
 
+SceneErrors measure_scene(const Scene& scene, const ReferenceImages& truth, AoMethod method) {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     SceneErrors errors;
     for (int layers : {1, 2}) {
-        const RenderSettings settings = accuracy_settings(layers);
+        const RenderSettings settings = accuracy_settings(layers, method);
         Renderer renderer(scene, settings, loader);
         const int guard = frame_layout(settings).guard;
         for (int frame = 1; frame <= accumulated_frames; ++frame) {
@@ -117,13 +120,13 @@ SceneErrors measure_scene(const std::string& name) {
     return errors;
 }
 
-// Targets not met yet, as "scene/target/stage", with the hard bound each must
-// still keep (about 10% above what the signed estimator measures at this
-// size). Reported through CHECK_NOFAIL; every target not listed is a hard
-// check. The estimator clamped at 0 per pixel measured cornell 0.037 /
-// +0.021 and warehouse 0.038 / +0.027 in the first frame: the signed one
-// trades a little one-frame MAE on cornell (noise at creases the clamp cut)
-// for most of its bias.
+// Targets not met yet, as "method/scene/target/stage", with the hard bound
+// each must still keep (about 10% above what the estimator measures at this
+// size, two more pixels for counts of a few). Reported through CHECK_NOFAIL;
+// every target not listed is a hard check. The solid-angle estimator clamped
+// at 0 per pixel measured cornell 0.037 / +0.021 and warehouse 0.038 /
+// +0.027 in the first frame: the signed one trades a little one-frame MAE on
+// cornell (noise at creases the clamp cut) for most of its bias.
 const std::map<std::string, double>& short_of_target() {
     static const std::map<std::string, double> bounds = {
         // The G-buffer lacks occluders hidden from both layers (reference
@@ -132,18 +135,48 @@ const std::map<std::string, double>& short_of_target() {
         // Measured: cornell 0.040 in the first frame (0.029 accumulated,
         // a hard check since the blur's world extent); warehouse MAE
         // 0.037 / 0.033, bias +0.025 / +0.025.
-        {"cornell/mae/first", 0.045},
-        {"warehouse/mae/first", 0.042},
-        {"warehouse/bias/first", 0.028},
-        {"warehouse/mae/accumulated", 0.039},
-        {"warehouse/bias/accumulated", 0.028},
+        {"solid-angle/cornell/mae/first", 0.045},
+        {"solid-angle/warehouse/mae/first", 0.042},
+        {"solid-angle/warehouse/bias/first", 0.028},
+        {"solid-angle/warehouse/mae/accumulated", 0.039},
+        {"solid-angle/warehouse/bias/accumulated", 0.028},
         // Open pixels below 0.99 after the blur, which averages in the
         // occlusion of neighbours within half the AO radius: atrium 32 / 13
         // and warehouse 19 / 18 of about 13600 and 10300 open pixels.
-        {"atrium/open-blurred/first", 36.0},
-        {"atrium/open-blurred/accumulated", 15.0},
-        {"warehouse/open-blurred/first", 21.0},
-        {"warehouse/open-blurred/accumulated", 20.0},
+        {"solid-angle/atrium/open-blurred/first", 36.0},
+        {"solid-angle/atrium/open-blurred/accumulated", 15.0},
+        {"solid-angle/warehouse/open-blurred/first", 21.0},
+        {"solid-angle/warehouse/open-blurred/accumulated", 20.0},
+        // The march (an option) trades the other way: every stored surface
+        // is a 0.2 m slab, which finds hidden occluders but also fills space
+        // beyond convex corners and behind parts thinner than the slab
+        // (docs/deep-sao.md, "The march"). At this size its bias misses on
+        // cornell (+0.012 / +0.012) and warehouse (+0.013 / +0.013); at
+        // 320x180 it meets it. Open pixels below 0.99, before / after the
+        // blur, first frame and accumulated: warehouse 53 / 154 and 53 / 134,
+        // atrium 3 / 32 and 3 / 8, ref-slab 8 / 9 and 8 / 5, cornell 1 / 0
+        // and 1 / 2, ref-bench 0 / 2 and 0 / 1.
+        {"march/cornell/bias/first", 0.0135},
+        {"march/cornell/bias/accumulated", 0.014},
+        {"march/warehouse/bias/first", 0.0145},
+        {"march/warehouse/bias/accumulated", 0.0145},
+        {"march/warehouse/open/first", 60.0},
+        {"march/warehouse/open/accumulated", 60.0},
+        {"march/warehouse/open-blurred/first", 170.0},
+        {"march/warehouse/open-blurred/accumulated", 150.0},
+        {"march/atrium/open/first", 5.0},
+        {"march/atrium/open/accumulated", 5.0},
+        {"march/atrium/open-blurred/first", 36.0},
+        {"march/atrium/open-blurred/accumulated", 10.0},
+        {"march/ref-slab/open/first", 10.0},
+        {"march/ref-slab/open/accumulated", 10.0},
+        {"march/ref-slab/open-blurred/first", 11.0},
+        {"march/ref-slab/open-blurred/accumulated", 7.0},
+        {"march/cornell/open/first", 3.0},
+        {"march/cornell/open/accumulated", 3.0},
+        {"march/cornell/open-blurred/accumulated", 4.0},
+        {"march/ref-bench/open-blurred/first", 4.0},
+        {"march/ref-bench/open-blurred/accumulated", 3.0},
     };
     return bounds;
 }
@@ -179,7 +212,7 @@ void check_stage(const std::string& name, const std::string& stage, const StageE
     check_target(name, "open", stage, double(errors.raw_two_layers.open_dark), 0.0);
     check_target(name, "open-blurred", stage, double(two.open_dark), 0.0);
     // On the bench behind the posts layer 1 sees occluders layer 0 cannot.
-    if (name == "ref-bench") CHECK(two.mae < one.mae - 5e-4);
+    if (name.ends_with("/ref-bench")) CHECK(two.mae < one.mae - 5e-4);
 }
 
 }  // namespace
@@ -188,9 +221,15 @@ TEST_CASE("ao accuracy: blurred deep SAO estimates the ray-traced visibility on 
           "[ao-accuracy]") {
     const auto name = GENERATE(as<std::string>{}, "ref-crease", "ref-slab", "ref-board",
                                "ref-bench", "cornell", "atrium", "warehouse");
-    const SceneErrors errors = measure_scene(name);
-    check_stage(name, "first", errors.first);
-    check_stage(name, "accumulated", errors.accumulated);
+    const Scene scene = load_scene(name);
+    const ReferenceImages truth = trace_truth(scene);
+    for (AoMethod method : {AoMethod::solid_angle, AoMethod::march}) {
+        // Keys of short_of_target() and the messages name the method first.
+        const std::string key = std::string(to_string(method)) + "/" + name;
+        const SceneErrors errors = measure_scene(scene, truth, method);
+        check_stage(key, "first", errors.first);
+        check_stage(key, "accumulated", errors.accumulated);
+    }
 }
 
 }  // namespace deepgi::test

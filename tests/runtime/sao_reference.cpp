@@ -26,6 +26,69 @@ glm::vec3 camera_position(float centre_x, float centre_y, float depth, const Sao
     return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
 }
 
+// The march (sao.frag, march_visibility): AV = 1 - mean f(d) over cosine-
+// weighted rays, each marched until it is first inside a slab `thickness`
+// deep behind a stored surface.
+float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const SaoInputs& inputs,
+                       const AoSettings& settings) {
+    const FloatImage& base = inputs.pyramid.at(0);
+    const float width = float(base.width);
+    const float height = float(base.height);
+    const glm::vec3 axis = std::abs(normal.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+    const glm::vec3 tangent = glm::normalize(glm::cross(normal, axis));
+    const glm::vec3 bitangent = glm::cross(normal, tangent);
+    const std::uint32_t hash = pixel_rotation_hash(std::uint32_t(x), std::uint32_t(y));
+    // The first frame: step 0 of the rotation cycle adds nothing to either.
+    const float offset = float(shader::avalanche32(hash ^ 0x68e31da4u) >> 8) * (1.0f / 16777216.0f);
+    const float phi = float(hash >> 8) * (1.0f / 16777216.0f) * 6.2831855f;
+    const float c = std::cos(phi), s = std::sin(phi);
+    const float radius = settings.radius;
+    const float step_length = radius / float(DEEPGI_AO_MARCH_STEPS);
+    float occlusion = 0.0f;
+    for (int i = 0; i < DEEPGI_AO_MARCH_RAYS; ++i) {
+        // Ray i of the golden-angle disk, turned by the pixel's rotation, and
+        // lifted to the hemisphere (Malley's method: cosine-weighted).
+        const float golden = float(i) * 0.618034f;
+        const float angle = 6.2831855f * (golden - std::floor(golden));
+        const float disk_radius = std::sqrt((float(i) + 0.5f) / float(DEEPGI_AO_MARCH_RAYS));
+        const float dx = std::cos(angle), dy = std::sin(angle);
+        const glm::vec2 disk = glm::vec2(c * dx - s * dy, s * dx + c * dy) * disk_radius;
+        const glm::vec3 direction = tangent * disk.x + bitangent * disk.y +
+                                    normal * std::sqrt(std::max(0.0f, 1.0f - glm::dot(disk, disk)));
+        float previous = 0.0f;
+        float hit = -1.0f;
+        for (int k = 0; k < DEEPGI_AO_MARCH_STEPS && hit < 0.0f; ++k) {
+            const float t = (float(k) + offset) * step_length;
+            const glm::vec3 q = position + direction * t;
+            const float z = -q.z;
+            if (z <= inputs.near_plane) break;
+            const float at_x = (q.x / (z * inputs.ray_scale.x) * 0.5f + 0.5f) * width;
+            const float at_y = (q.y / (z * inputs.ray_scale.y) * 0.5f + 0.5f) * height;
+            if (at_x < 0.0f || at_y < 0.0f || at_x >= width || at_y >= height) break;
+            const int px = int(at_x), py = int(at_y);
+            for (int layer = 0; layer < settings.layers && hit < 0.0f; ++layer) {
+                const float depth = base.at(px, py, layer);
+                if (depth <= 0.0f || z <= depth || z >= depth + settings.thickness) continue;
+                const glm::vec3 surface =
+                    camera_position(float(px) + 0.5f, float(py) + 0.5f, depth, inputs);
+                const FloatImage& normals = layer == 0 ? inputs.normals : inputs.normals_layer1;
+                const glm::vec3 surface_normal(normals.at(px, py, 0), normals.at(px, py, 1),
+                                               normals.at(px, py, 2));
+                // Behind the stored depth, within the slab, and behind the
+                // surface's plane by more than its reconstruction error.
+                const float below = glm::dot(q - surface, surface_normal);
+                if (below >= -(settings.bias + 1.0e-3f * z)) continue;
+                const float above =
+                    glm::dot(position + direction * previous - surface, surface_normal);
+                hit = above > 0.0f ? previous + (t - previous) * above / (above - below) : t;
+            }
+            previous = t;
+        }
+        if (hit >= 0.0f) occlusion += std::max(0.0f, 1.0f - hit * hit / (radius * radius));
+    }
+    return 1.0f - occlusion / float(DEEPGI_AO_MARCH_RAYS);
+}
+
 float obscurance(glm::vec3 v, glm::vec3 normal, float radius_squared, float bias) {
     constexpr float epsilon = 1.0e-4f;
     const float vv = glm::dot(v, v);
@@ -71,6 +134,11 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                 camera_position(float(x) + 0.5f, float(y) + 0.5f, depth, inputs);
             const glm::vec3 normal(inputs.normals.at(x, y, 0), inputs.normals.at(x, y, 1),
                                    inputs.normals.at(x, y, 2));
+            if (settings.method == deepgi::AoMethod::march) {
+                result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] = std::pow(
+                    march_visibility(x, y, position, normal, inputs, settings), settings.intensity);
+                continue;
+            }
             const float radius_pixels =
                 settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
             const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));

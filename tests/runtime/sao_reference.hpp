@@ -25,10 +25,12 @@ struct SaoInputs {
     FloatImage normals;         // layer-0 camera-space normals, 3 channels
     FloatImage normals_layer1;  // layer-1 normals (read by the solid-angle method)
     glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
+    float near_plane = 0.05f;   // the camera's (m): the march stops in front of it
 };
 
 // Ambient visibility per pixel (1 channel, the pyramid's level-0 size): in
-// [0, 1] for the published method, signed (at most 1) for the solid-angle one.
+// [0, 1] for the published and march methods, signed (at most 1) for the
+// solid-angle one. The first frame's: the rotation cycle at its step 0.
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings);

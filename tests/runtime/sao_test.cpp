@@ -31,6 +31,7 @@ FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings
     frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
     frame.inputs.normals_layer1 = renderer.read_pass_output("gbuffer-normal-layer1");
     frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
+    frame.inputs.near_plane = scene.default_camera.near_plane;
     frame.raw = renderer.read_pass_output("ao-raw");
     frame.blurred = renderer.read_pass_output("ao-blurred");
     return frame;
@@ -85,7 +86,8 @@ void check_against_reference(const Scene& scene, const RenderSettings& settings,
 TEST_CASE("sao: deep SAO matches the CPU evaluation with the build-time taps", "[reference]") {
     const auto taps = build_time_ao_taps();
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    for (deepgi::AoMethod method : {deepgi::AoMethod::published, deepgi::AoMethod::solid_angle}) {
+    for (deepgi::AoMethod method :
+         {deepgi::AoMethod::published, deepgi::AoMethod::solid_angle, deepgi::AoMethod::march}) {
         for (int layers : {2, 1}) {
             RenderSettings settings = small_settings(160, 90);
             settings.ao.layers = layers;
@@ -118,11 +120,14 @@ TEST_CASE("sao: an unoccluded plane has visibility 1", "[reference]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     for (float distance : {0.5f, 3.0f, 40.0f}) {
-        for (int layers : {1, 2}) {
+        for (auto [layers, method] :
+             {std::pair{1, AoMethod::solid_angle}, std::pair{2, AoMethod::solid_angle},
+              std::pair{1, AoMethod::march}, std::pair{2, AoMethod::march}}) {
             Scene scene = camera_facing_plane(distance);
             RenderSettings settings = small_settings(160, 90);
             settings.ao.layers = layers;
-            settings.ao.radius = 2.0f;  // taps spread far, many off the buffer
+            settings.ao.method = method;
+            settings.ao.radius = 2.0f;  // taps and rays spread far, many off the buffer
             const FrameReadBack frame = render_and_read(scene, settings, loader);
             const int guard = frame_layout(settings).guard;
             float lowest = 1.0f;
@@ -131,7 +136,8 @@ TEST_CASE("sao: an unoccluded plane has visibility 1", "[reference]") {
                     lowest = std::min({lowest, frame.raw.at(x, y), frame.blurred.at(x, y)});
                 }
             }
-            INFO("plane at " << distance << " m, " << layers << " layer(s)");
+            INFO("plane at " << distance << " m, " << layers << " layer(s), method "
+                             << to_string(method));
             CHECK(lowest >= 1.0f - 1e-3f);
         }
     }
@@ -140,9 +146,12 @@ TEST_CASE("sao: an unoccluded plane has visibility 1", "[reference]") {
 TEST_CASE("sao: two layers never see less occlusion than one", "[reference]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    for (const Scene& scene :
-         {make_builtin_scene("cornell"), occluded_floor(), make_builtin_scene("warehouse")}) {
+    for (auto [scene, method] : {std::pair{make_builtin_scene("cornell"), AoMethod::solid_angle},
+                                 std::pair{occluded_floor(), AoMethod::solid_angle},
+                                 std::pair{make_builtin_scene("warehouse"), AoMethod::solid_angle},
+                                 std::pair{make_builtin_scene("warehouse"), AoMethod::march}}) {
         RenderSettings settings = small_settings(160, 90);
+        settings.ao.method = method;
         settings.ao.layers = 1;
         const FloatImage one = render_and_read(scene, settings, loader).raw;
         settings.ao.layers = 2;
@@ -153,7 +162,8 @@ TEST_CASE("sao: two layers never see less occlusion than one", "[reference]") {
             violations += two.pixels[i] > one.pixels[i];
             darker += two.pixels[i] < one.pixels[i] - 1e-3f;
         }
-        INFO(scene.name << ": " << darker << " pixels darker with two layers");
+        INFO(scene.name << ", method " << to_string(method) << ": " << darker
+                        << " pixels darker with two layers");
         CHECK(violations == 0);
         CHECK(darker > 0);  // layer 1 adds occlusion somewhere, so the comparison means something
     }
@@ -184,7 +194,7 @@ TEST_CASE("sao: no NaN or Inf at grazing angles, near the near plane, on sky and
     };
     for (const Case& test : cases) {
         for (int layers : {1, 2}) {
-            for (AoMethod method : {AoMethod::solid_angle, AoMethod::published}) {
+            for (AoMethod method : {AoMethod::solid_angle, AoMethod::published, AoMethod::march}) {
                 RenderSettings settings = small_settings(test.width, test.height);
                 settings.ao.layers = layers;
                 settings.ao.method = method;

@@ -47,6 +47,7 @@ enum class TimingMode { automatic, cpu, gpu };
 enum class AoMethod {
     published = DEEPGI_AO_METHOD_PUBLISHED,      // 1 - sqrt(...), kept for comparison
     solid_angle = DEEPGI_AO_METHOD_SOLID_ANGLE,  // the reference's integral over the seen surface
+    march = DEEPGI_AO_METHOD_MARCH,  // the reference's rays through slabs behind both layers
 };
 
 // Deep radiosity estimators (docs/radiosity.md).
@@ -118,7 +119,8 @@ inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 // The bias each estimator was derived or tuned with. Solid-angle needs none:
 // a coplanar point's term is of the second order in its reconstruction error
 // (sao.frag), and every centimetre of threshold drops real occluders next to
-// creases. The published method subtracts its bias and keeps the 1 cm it was
+// creases. The march adds it to its own margin against self-hits (sao.frag).
+// The published method subtracts its bias and keeps the 1 cm it was
 // tuned with. AoSettings{} holds the solid-angle default; front ends that switch
 // method without an explicit bias take this one.
 constexpr float default_ao_bias(AoMethod method) {
@@ -135,6 +137,11 @@ struct AoSettings {
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
     AoMethod method = AoMethod::solid_angle;
+    // March only: the scene is taken as solid this deep (m) behind every
+    // stored surface. 0.2 m meets the bias target on every reference scene
+    // at 320x180; 0.1 m leaves hidden occluders out, and 0.3 m makes the
+    // scenes' 6 cm slab and bench seat too dark (docs/deep-sao.md, "A study").
+    float thickness = 0.2f;
     // Temporal filter: weight of the history across whole rotation cycles
     // (0: the raw SAO result of each frame); see docs/radiosity.md.
     float alpha = 0.85f;

@@ -37,6 +37,7 @@ public:
         glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP,
                            frame.integer("depth_pyramid.max_level"));
         glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_METHOD, static_cast<int>(settings.method));
+        glProgramUniform1f(program, DEEPGI_UNIFORM_SAO_THICKNESS, settings.thickness);
         glUseProgram(program);
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("ao.raw", visibility_.get());

@@ -3,7 +3,8 @@
 // count runs the production sao.frag with a header the codegen library writes
 // for (N, optimal tau). On llvmpipe the renderer times each pass with a CPU
 // clock around glFinish; on a GPU with timer queries. Medians of --frames
-// frames after --warmup, all in one run.
+// frames after --warmup, all in one run. --ao-method march times the march,
+// whose rays and steps (shared_enums.h) do not follow the tap count.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/renderer.hpp"
@@ -47,12 +48,17 @@ int main(int argc, char** argv) {
     std::vector<int> tap_counts = {4, 8, 11, 16, 32, 64};
     int warmup = 2;
     int frames = 9;
+    std::string method_name{deepgi::to_string(deepgi::AoSettings{}.method)};
     CLI::App app{"sao_bench: deep SAO milliseconds against tap count and layers"};
     app.add_option("--size", size, "WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--scene", scene_name, "Built-in scene or glTF file")->capture_default_str();
     app.add_option("--taps", tap_counts, "Tap counts to time")->capture_default_str();
     app.add_option("--warmup", warmup, "Untimed frames first")->capture_default_str();
     app.add_option("--frames", frames, "Timed frames (the median is reported)")
+        ->capture_default_str();
+    app.add_option(
+           "--ao-method", method_name,
+           fmt::format("Deep SAO estimator: {}", deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
@@ -70,6 +76,8 @@ int main(int argc, char** argv) {
         deepgi::RenderSettings settings;
         settings.width = std::stoi(match[1].str());
         settings.height = std::stoi(match[2].str());
+        settings.ao.method = deepgi::parse_ao_method("--ao-method", method_name);
+        settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
         const deepgi::Scene scene = deepgi::load_scene(scene_name);
 
         deepgi::HeadlessContext context;
@@ -99,10 +107,12 @@ int main(int argc, char** argv) {
                        two.at("depth_pyramid"));
             std::fflush(stdout);
         }
-        fmt::print("\n{} {}x{}, scene {}, {} ({}), median of {} frames after {} warm-up frames\n",
-                   info.renderer, settings.width, settings.height, scene_name,
-                   cpu_clock ? "CPU clock around glFinish" : "GL timer queries", info.version,
-                   frames, warmup);
+        fmt::print(
+            "\n{} {}x{}, scene {}, method {}, {} ({}), median of {} frames after {} "
+            "warm-up frames\n",
+            info.renderer, settings.width, settings.height, scene_name, method_name,
+            cpu_clock ? "CPU clock around glFinish" : "GL timer queries", info.version, frames,
+            warmup);
         return 0;
     } catch (const deepgi::InputError& error) {
         fmt::print(stderr, "sao_bench: error: {}\n", error.what());
