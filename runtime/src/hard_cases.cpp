@@ -58,6 +58,7 @@ Scene scaled_scene(Scene scene, float s) {
 RenderSettings scaled_settings(RenderSettings settings, float s) {
     settings.ao.radius *= s;
     settings.ao.bias *= s;
+    settings.ao.thickness *= s;
     settings.min_separation *= s;
     return settings;
 }

@@ -19,6 +19,15 @@ namespace hc = hard_cases;
 
 using Frame = hc::AoFrame;
 
+// Both estimators that ship: the default and the march.
+constexpr AoMethod methods[] = {AoMethod::solid_angle, AoMethod::march};
+
+RenderSettings with_method(RenderSettings settings, AoMethod method) {
+    settings.ao.method = method;
+    settings.ao.bias = default_ao_bias(method);
+    return settings;
+}
+
 Frame render(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader) {
     return hc::render_ao(scene, settings, loader);
 }
@@ -47,9 +56,13 @@ TEST_CASE("stability: a scene scaled by 1e-3 and by 1e3 with matching lengths gi
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const hc::Parameters cases;
     REQUIRE(cases.scale_tolerance <= 1e-3);  // the documented bound, not whatever is shared
-    for (const std::string& name : cases.scaled_scenes) {
+    std::vector<std::pair<std::string, AoMethod>> runs;
+    for (const std::string& scene : cases.scaled_scenes)
+        for (AoMethod method : methods) runs.emplace_back(scene, method);
+    for (const auto& [name, method] : runs) {
         const Scene base = make_reference_scene(name);
-        const RenderSettings settings = hc::base_settings(cases.width, cases.height);
+        const RenderSettings settings =
+            with_method(hc::base_settings(cases.width, cases.height), method);
         const Frame unit = render(base, settings, loader);
         int occluded = 0;
         for (float v : unit.raw.pixels) occluded += v < 0.9f;
@@ -70,8 +83,9 @@ TEST_CASE("stability: a scene scaled by 1e-3 and by 1e3 with matching lengths gi
                 worst_blurred = std::max(
                     worst_blurred, std::abs(scaled.blurred.pixels[i] - unit.blurred.pixels[i]));
             }
-            INFO(name << " scaled by " << s << ": worst raw " << worst_raw << ", worst blurred "
-                      << worst_blurred << ", mean " << sum / double(unit.raw.pixels.size())
+            INFO(name << " (" << to_string(method) << ") scaled by " << s << ": worst raw "
+                      << worst_raw << ", worst blurred " << worst_blurred << ", mean "
+                      << sum / double(unit.raw.pixels.size())
                       << ", pixels beyond 1e-3: " << beyond);
             CHECK(worst_raw <= cases.scale_tolerance);
             CHECK(worst_blurred <= cases.scale_tolerance);
@@ -92,16 +106,21 @@ TEST_CASE("stability: an open floor 1 km away seen through a 1 mm near plane sta
         // The view's centre ray meets the floor 1 km away.
         const Scene scene = hc::far_floor(pitch);
         for (float radius : cases.far_radii) {
-            RenderSettings settings = hc::base_settings(cases.width, cases.height);
-            settings.ao.radius = radius;
-            const Frame frame = render(scene, settings, loader);
-            check_valid_visibility(frame);
-            int surface = 0;
-            const float lowest = lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
-            INFO("pitch " << pitch << ", radius " << radius << ": lowest AV " << lowest << " over "
-                          << surface << " floor pixels");
-            CHECK(surface > cases.width * cases.height / 2);
-            CHECK(lowest >= cases.open_surface_min_visibility);
+            for (AoMethod method : methods) {
+                RenderSettings settings =
+                    with_method(hc::base_settings(cases.width, cases.height), method);
+                settings.ao.radius = radius;
+                const Frame frame = render(scene, settings, loader);
+                check_valid_visibility(frame);
+                int surface = 0;
+                const float lowest =
+                    lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+                INFO("pitch " << pitch << ", radius " << radius << ", " << to_string(method)
+                              << ": lowest AV " << lowest << " over " << surface
+                              << " floor pixels");
+                CHECK(surface > cases.width * cases.height / 2);
+                CHECK(lowest >= cases.open_surface_min_visibility);
+            }
         }
     }
 }
@@ -114,16 +133,21 @@ TEST_CASE("stability: an open plane seen at grazing angles keeps AV >= 0.99", "[
     for (float pitch : cases.grazing_pitches) {
         const Scene scene = hc::grazing_floor(pitch);
         for (int layers : cases.layers) {
-            RenderSettings settings = hc::base_settings(cases.width, cases.height);
-            settings.ao.layers = layers;
-            const Frame frame = render(scene, settings, loader);
-            check_valid_visibility(frame);
-            int surface = 0;
-            const float lowest = lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
-            INFO("pitch " << pitch << ", " << layers << " layer(s): lowest AV " << lowest
-                          << " over " << surface << " floor pixels");
-            CHECK(surface > 0);
-            CHECK(lowest >= cases.open_surface_min_visibility);
+            for (AoMethod method : methods) {
+                RenderSettings settings =
+                    with_method(hc::base_settings(cases.width, cases.height), method);
+                settings.ao.layers = layers;
+                const Frame frame = render(scene, settings, loader);
+                check_valid_visibility(frame);
+                int surface = 0;
+                const float lowest =
+                    lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+                INFO("pitch " << pitch << ", " << layers << " layer(s), " << to_string(method)
+                              << ": lowest AV " << lowest << " over " << surface
+                              << " floor pixels");
+                CHECK(surface > 0);
+                CHECK(lowest >= cases.open_surface_min_visibility);
+            }
         }
     }
 }
@@ -141,16 +165,19 @@ TEST_CASE("stability: depth discontinuities inside the guard band give finite AV
     // in the guard band, right where the visible frame begins, and next to it.
     const std::vector<int> edges = hc::guard_edge_columns(base);
     REQUIRE(edges.front() < 0);
+    std::vector<std::pair<float, AoMethod>> runs;
+    for (float radius : cases.guard_radii)
+        for (AoMethod method : methods) runs.emplace_back(radius, method);
     for (int edge_px : edges) {
         const Scene scene = hc::guard_edge(base, edge_px);
         for (int layers : cases.layers) {
-            for (float radius : cases.guard_radii) {
-                RenderSettings settings = base;
+            for (const auto& [radius, method] : runs) {
+                RenderSettings settings = with_method(base, method);
                 settings.ao.layers = layers;
                 settings.ao.radius = radius;
                 const Frame frame = render(scene, settings, loader);
                 INFO("edge at visible pixel " << edge_px << ", " << layers << " layer(s), radius "
-                                              << radius);
+                                              << radius << ", " << to_string(method));
                 check_valid_visibility(frame);
                 // The discontinuity is really there, in the row's guard band.
                 const int y = frame.depth.height / 2;

@@ -59,7 +59,7 @@ RenderSettings base_settings(int width, int height);
 // Everything with a length scaled by s: geometry, camera position and near
 // plane. Angles and pixel measures stay.
 Scene scaled_scene(Scene scene, float s);
-// The AO radius and bias and the layer separation scaled by s.
+// The AO radius, bias and march thickness and the layer separation scaled by s.
 RenderSettings scaled_settings(RenderSettings settings, float s);
 
 // A 20 km open floor (y = 0) and a camera with a 1 mm near plane at the
