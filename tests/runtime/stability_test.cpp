@@ -42,10 +42,14 @@ void check_valid_visibility(const Frame& frame) {
     CHECK(all_finite(frame.depth));
 }
 
-// Lowest visibility over the visible (non-guard) pixels that hit a surface.
-float lowest_on_surfaces(const Frame& frame, int guard, int* surface_pixels) {
+// Renders the frame, checks it is valid, and returns its lowest visibility
+// over the visible (non-guard) pixels that hit a surface.
+float lowest_on_surfaces(const Scene& scene, const RenderSettings& settings,
+                         const ShaderLoader& loader, int* surface_pixels) {
+    const Frame frame = render(scene, settings, loader);
+    check_valid_visibility(frame);
     long long count = 0;
-    const double lowest = hc::lowest_on_surfaces(frame, guard, &count);
+    const double lowest = hc::lowest_on_surfaces(frame, frame_layout(settings).guard, &count);
     *surface_pixels = int(count);
     return float(lowest);
 }
@@ -110,11 +114,8 @@ TEST_CASE("stability: an open floor 1 km away seen through a 1 mm near plane sta
                 RenderSettings settings =
                     with_method(hc::base_settings(cases.width, cases.height), method);
                 settings.ao.radius = radius;
-                const Frame frame = render(scene, settings, loader);
-                check_valid_visibility(frame);
                 int surface = 0;
-                const float lowest =
-                    lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+                const float lowest = lowest_on_surfaces(scene, settings, loader, &surface);
                 INFO("pitch " << pitch << ", radius " << radius << ", " << to_string(method)
                               << ": lowest AV " << lowest << " over " << surface
                               << " floor pixels");
@@ -137,11 +138,8 @@ TEST_CASE("stability: an open plane seen at grazing angles keeps AV >= 0.99", "[
                 RenderSettings settings =
                     with_method(hc::base_settings(cases.width, cases.height), method);
                 settings.ao.layers = layers;
-                const Frame frame = render(scene, settings, loader);
-                check_valid_visibility(frame);
                 int surface = 0;
-                const float lowest =
-                    lowest_on_surfaces(frame, frame_layout(settings).guard, &surface);
+                const float lowest = lowest_on_surfaces(scene, settings, loader, &surface);
                 INFO("pitch " << pitch << ", " << layers << " layer(s), " << to_string(method)
                               << ": lowest AV " << lowest << " over " << surface
                               << " floor pixels");
