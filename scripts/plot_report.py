@@ -6,8 +6,13 @@
 Reads DIR/report.csv, DIR/report.json, DIR/discrepancy.csv and
 DIR/images/*.pfm (written by `deepgi report`), writes DIR/error_vs_ms.png,
 DIR/discrepancy.png, DIR/discrepancy_vs_error.png, DIR/images/<scene>.png
-(truth, estimate, signed error) and DIR/summary.md. Every statement in the
-summary is computed from the CSV, so re-running the report rewrites it.
+(truth, then each AO method's estimate and signed error) and DIR/summary.md.
+Every statement in the summary is computed from the CSV, so re-running the
+report rewrites it.
+
+The rows of the first AO method in the CSV compare the tap patterns; the
+other methods' rows (the image pattern only) are set beside them in the
+figure of error against milliseconds and in the section on estimators.
 Files are written to a temporary name and renamed, so a reader never sees
 half a file.
 """
@@ -26,6 +31,14 @@ PATTERN_LABELS = {
     "m8": "optimal p/8",
 }
 STUDY_TAPS = (8, 11, 16, 32)
+METHOD_LABELS = {
+    "solid-angle": "solid angle",
+    "published": "published 1 - sqrt",
+    "march": "march",
+}
+# The accuracy targets of docs/deep-sao.md for blurred two-layer AV.
+TARGET_MAE = 0.03
+TARGET_BIAS = 0.01
 
 
 def atomic_write_text(path, text):
@@ -51,6 +64,7 @@ def read_rows(path):
         for raw in csv.DictReader(f):
             row = {"scene": raw["scene"], "pattern": raw["pattern"],
                    "taps": int(raw["taps"]), "layers": int(raw["layers"]),
+                   "ao_method": raw.get("ao_method", "solid-angle"),
                    "device": raw.get("device", "")}
             for key, value in raw.items():
                 if key not in row:
@@ -122,7 +136,9 @@ class Table:
                      and (scene is None or r["scene"] == scene)])
 
 
-def plot_error_vs_ms(plt, table, patterns, taps, layers, out):
+def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
+    """`others`: (method, Table of its rows) for the AO methods beside the
+    first; each is drawn in black, one marker per method."""
     fig, axes = plt.subplots(1, 2, figsize=(13, 5))
     panels = [("ref_blur_mae", "MAE against the ray-traced reference (after the blur)"),
               ("conv_raw_mae", f"MAE against the converged estimator (before the blur)")]
@@ -142,14 +158,29 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out):
                 if pattern == patterns[0] and layer == layers[-1]:
                     for x, y, n in points:
                         ax.annotate(f"N={n}", (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        for index, (method, other) in enumerate(others):
+            method_taps = sorted({r["taps"] for r in other.rows})
+            for layer in layers:
+                xs = [other.value("sao_ms", taps=n, layers=layer) for n in method_taps]
+                ys = [other.value(column, taps=n, layers=layer) for n in method_taps]
+                points = [(x, y) for x, y in zip(xs, ys) if x is not None and y is not None]
+                if not points:
+                    continue
+                ax.plot([p[0] for p in points], [p[1] for p in points], color="black",
+                        marker="*^sD"[index % 4], markersize=9,
+                        linestyle="-" if layer == 1 else "--",
+                        label=f"{METHOD_LABELS.get(method, method)}, {layer} layer{'s' if layer > 1 else ''}")
         ax.set_xlabel("deep SAO pass (ms, median, mean over scenes)")
         ax.set_ylabel("mean absolute error of ambient visibility")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-    axes[1].legend(fontsize=7, ncol=2)
-    fig.tight_layout()
+    # The left panel has every curve (the march has no converged result), so
+    # its legend serves both, below them.
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
+    fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(labels) + 3) // 4), 1, 1))
     atomic_savefig(fig, out)
     plt.close(fig)
 
@@ -196,7 +227,7 @@ def plot_discrepancy_vs_error(plt, table, patterns, study, out):
     plt.close(fig)
 
 
-def plot_images(plt, directory, scenes):
+def plot_images(plt, directory, scenes, methods):
     import numpy as np
 
     made = []
@@ -204,17 +235,26 @@ def plot_images(plt, directory, scenes):
         stem = os.path.splitext(os.path.basename(scene))[0]
         stem = "".join(c if c.isalnum() or c == "-" else "-" for c in stem) or "scene"
         truth_path = os.path.join(directory, "images", f"{stem}-truth.pfm")
-        estimate_path = os.path.join(directory, "images", f"{stem}-estimate.pfm")
-        if not (os.path.exists(truth_path) and os.path.exists(estimate_path)):
+        estimates = [(m, os.path.join(directory, "images", f"{stem}-estimate-{m}.pfm"))
+                     for m in methods]
+        estimates = [(m, path) for m, path in estimates if os.path.exists(path)]
+        if not (os.path.exists(truth_path) and estimates):
             continue
-        truth, estimate = read_pfm(truth_path), read_pfm(estimate_path)
-        error = estimate - truth
-        limit = max(0.05, float(np.nanpercentile(np.abs(error), 99))) if np.isfinite(error).any() else 0.05
-        fig, axes = plt.subplots(1, 3, figsize=(13, 3.2))
-        for ax, image, title, cmap, lo, hi in (
-                (axes[0], truth, "ray-traced AV", "gray", 0, 1),
-                (axes[1], estimate, "deep SAO (blurred)", "gray", 0, 1),
-                (axes[2], error, "estimate - truth", "coolwarm", -limit, limit)):
+        truth = read_pfm(truth_path)
+        errors = [(m, read_pfm(path), read_pfm(path) - truth) for m, path in estimates]
+        # One colour scale for every method's error, so the rows compare.
+        spread = np.concatenate([np.abs(e[np.isfinite(e)]) for _, _, e in errors])
+        limit = max(0.05, float(np.percentile(spread, 99))) if spread.size else 0.05
+        # The truth, then one column per method: its estimate above its error.
+        fig, axes = plt.subplots(2, 1 + len(errors), figsize=(4.3 * (1 + len(errors)), 5.4),
+                                 squeeze=False)
+        panels = [(axes[0][0], truth, "ray-traced AV", "gray", 0, 1)]
+        axes[1][0].axis("off")
+        for column, (method, estimate, error) in enumerate(errors, start=1):
+            label = METHOD_LABELS.get(method, method)
+            panels.append((axes[0][column], estimate, f"{label} (blurred)", "gray", 0, 1))
+            panels.append((axes[1][column], error, f"{label} - truth", "coolwarm", -limit, limit))
+        for ax, image, title, cmap, lo, hi in panels:
             shown = ax.imshow(image, cmap=cmap, vmin=lo, vmax=hi, interpolation="nearest")
             ax.set_title(f"{scene}: {title}", fontsize=9)
             ax.axis("off")
@@ -315,6 +355,90 @@ def stability_section(directory, add):
                    else ".") + "\n")
 
 
+def estimator_section(rows, info, add):
+    """Every AO method at the image configuration, scene by scene, against
+    the accuracy targets, and what each costs."""
+    methods = list(dict.fromkeys(r["ao_method"] for r in rows))
+    if len(methods) < 2:
+        return
+    pattern = info.get("image_pattern") or "optimal"
+    n = info.get("image_taps")
+    layers = sorted({r["layers"] for r in rows})
+    top = layers[-1]
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+
+    def find(method, scene, layer=top):
+        for r in rows:
+            if (r["ao_method"], r["scene"], r["pattern"], r["taps"], r["layers"]) == \
+                    (method, scene, pattern, n, layer):
+                return r
+        return None
+
+    def count(value):
+        return "-" if value is None else f"{value:.0f}"
+
+    add(f"## AO estimators ({PATTERN_LABELS.get(pattern, pattern)}, N = {n}, {top} "
+        f"layer{'s' if top > 1 else ''})\n")
+    add("Each estimator against the ray-traced AV after the blur, in the first frame after a cut "
+        "and after a whole rotation cycle of a still camera (\"cycle\"). The march casts its own "
+        "rays (`DEEPGI_AO_MARCH_RAYS` x `DEEPGI_AO_MARCH_STEPS` samples), so N there is only the "
+        "radiosity gather's. \"Open\" pixels have nothing within the AO radius in the truth "
+        "(AV >= 0.9999); the columns count those whose estimate falls below 0.99.\n")
+    add("| scene | estimator | SAO ms | MAE | bias | MAE, cycle | bias, cycle | open | "
+        "below 0.99: raw / blurred / cycle |")
+    add("|:--|:--|--:|--:|--:|--:|--:|--:|:--|")
+    for scene in scenes:
+        for method in methods:
+            r = find(method, scene)
+            if r is None:
+                continue
+            add(f"| {scene} | {METHOD_LABELS.get(method, method)} | {fmt(r['sao_ms'], 2)} | "
+                f"{fmt(r['ref_blur_mae'])} | {fmt(r['ref_blur_bias'])} | {fmt(r['ref_accum_mae'])} | "
+                f"{fmt(r['ref_accum_bias'])} | {count(r.get('ref_open_pixels'))} | "
+                f"{count(r.get('ref_open_raw_below'))} / {count(r.get('ref_open_blur_below'))} / "
+                f"{count(r.get('ref_open_accum_below'))} |")
+    add("")
+
+    first = methods[0]
+    base_ms = mean([find(first, scene)["sao_ms"] for scene in scenes if find(first, scene)])
+    for method in methods:
+        found = [(scene, find(method, scene)) for scene in scenes]
+        found = [(scene, r) for scene, r in found if r is not None]
+        if not found:
+            continue
+        stages = []
+        for stage, suffix in (("First frame", "blur"), ("After a cycle", "accum")):
+            checks = (
+                (f"MAE <= {TARGET_MAE}", f"ref_{suffix}_mae", lambda v: v <= TARGET_MAE, fmt),
+                (f"|bias| <= {TARGET_BIAS}", f"ref_{suffix}_bias",
+                 lambda v: abs(v) <= TARGET_BIAS, lambda v: f"{v:+.4f}"),
+                ("no open pixel below 0.99", f"ref_open_{suffix}_below", lambda v: v == 0, count),
+            )
+            parts = []
+            for label, column, holds, show in checks:
+                values = [(scene, r.get(column)) for scene, r in found]
+                values = [(scene, v) for scene, v in values if v is not None]
+                misses = [f"{scene} {show(v)}" for scene, v in values if not holds(v)]
+                parts.append(f"{label} on {len(values) - len(misses)} of {len(values)}"
+                             + (f" ({', '.join(misses)})" if misses else ""))
+            stages.append(f"{stage}: " + "; ".join(parts))
+        worse = []
+        if len(layers) > 1:
+            for scene, r in found:
+                one = find(method, scene, layers[0])
+                if one is not None and r["ref_blur_mae"] is not None and \
+                        one["ref_blur_mae"] is not None and r["ref_blur_mae"] > one["ref_blur_mae"]:
+                    worse.append(f"{scene} {fmt(one['ref_blur_mae'])} -> {fmt(r['ref_blur_mae'])}")
+            stages.append(f"Two layers worse than one (MAE, first frame) on "
+                          f"{len(worse)} scene(s)" + (f" ({'; '.join(worse)})" if worse else ""))
+        ms = mean([r["sao_ms"] for _, r in found])
+        cost = f"SAO pass {fmt(ms, 2)} ms, mean over scenes"
+        if method != first and ms is not None and base_ms:
+            cost += f", {ms / base_ms:.2f}x the {METHOD_LABELS.get(first, first)}'s"
+        add(f"- **{METHOD_LABELS.get(method, method)}** ({cost}): " + ". ".join(stages) + ".")
+    add("")
+
+
 def rays_text(rays):
     """The reference's ray budget as the summary states it."""
     if rays == 0:
@@ -354,7 +478,7 @@ def bias_trend(truth):
             "of it is sampling.")
 
 
-def summary(directory, rows, info, discrepancy_series, images):
+def summary(directory, rows, info, discrepancy_series, images, all_rows=None):
     table = Table(rows)
     patterns = list(dict.fromkeys(r["pattern"] for r in rows))
     taps = sorted({r["taps"] for r in rows})
@@ -590,6 +714,7 @@ def summary(directory, rows, info, discrepancy_series, images):
                                        "nothing in this run contradicts it."))
     add("")
 
+    estimator_section(all_rows or rows, info, add)
     stability_section(directory, add)
 
     add("## Figures\n")
@@ -605,9 +730,13 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: plot_report.py DIR")
     directory = sys.argv[1]
-    rows = read_rows(os.path.join(directory, "report.csv"))
-    if not rows:
+    all_rows = read_rows(os.path.join(directory, "report.csv"))
+    if not all_rows:
         sys.exit("plot_report: report.csv has no rows")
+    methods = list(dict.fromkeys(r["ao_method"] for r in all_rows))
+    # The first method's rows compare the patterns; the rest stand beside them.
+    rows = [r for r in all_rows if r["ao_method"] == methods[0]]
+    others = [(m, Table([r for r in all_rows if r["ao_method"] == m])) for m in methods[1:]]
     with open(os.path.join(directory, "report.json")) as f:
         info = json.load(f)["info"]
     try:
@@ -622,14 +751,15 @@ def main():
     taps = sorted({r["taps"] for r in rows})
     layers = sorted({r["layers"] for r in rows})
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
-    plot_error_vs_ms(plt, table, patterns, taps, layers, os.path.join(directory, "error_vs_ms.png"))
+    plot_error_vs_ms(plt, table, patterns, taps, layers, os.path.join(directory, "error_vs_ms.png"),
+                     others)
     series = plot_discrepancy(plt, os.path.join(directory, "discrepancy.csv"),
                               os.path.join(directory, "discrepancy.png"))
     study = [n for n in STUDY_TAPS if n in taps] or taps
     plot_discrepancy_vs_error(plt, table, patterns, study,
                               os.path.join(directory, "discrepancy_vs_error.png"))
-    images = plot_images(plt, directory, scenes)
-    summary(directory, rows, info, series, images)
+    images = plot_images(plt, directory, scenes, methods)
+    summary(directory, rows, info, series, images, all_rows)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT INT TERM
 set -- --scenes ref-crease,ref-slab,ref-board,ref-bench,cornell,atrium,warehouse \
   --taps 4,8,11,16,32,64 --patterns optimal,tau1,golden,m2,m4,m8 --layers 1,2 \
+  --ao-methods solid-angle,published,march \
   --size 320x180 --rays 0 --frames 7 --warmup 1 "$@"
 start=$(date +%s)
 "$build/apps/deepgi/deepgi" report "$@" --output "$work/report"

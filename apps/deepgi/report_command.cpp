@@ -92,6 +92,12 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--patterns", report.patterns, "optimal, tau1, golden, m2, m4, m8")
         ->delimiter(',');
     app.add_option("--layers", report.layers, "Layer counts (1, 2)")->delimiter(',');
+    std::vector<std::string> ao_methods;
+    app.add_option("--ao-methods", ao_methods,
+                   fmt::format("Deep SAO estimators ({}); the first compares the patterns "
+                               "(default: solid-angle,published,march)",
+                               deepgi::enum_name_list<deepgi::AoMethod>()))
+        ->delimiter(',');
     app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT (guard band added)");
     app.add_option("--rays", report.rays,
                    "Reference rays per pixel; 0: as many as `deepgi reference` traces for its "
@@ -116,7 +122,14 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--plot-script", options.plot_script, "scripts/plot_report.py");
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
-    return run_reporting_errors("deepgi report", [&] { return run(options); });
+    return run_reporting_errors("deepgi report", [&] {
+        if (!ao_methods.empty()) {
+            report.ao_methods.clear();
+            for (const std::string& name : ao_methods)
+                report.ao_methods.push_back(deepgi::parse_ao_method("--ao-methods", name));
+        }
+        return run(options);
+    });
 }
 
 }  // namespace deepgi_app

@@ -187,6 +187,29 @@ FloatImage crop(const FloatImage& image, int guard, const std::vector<std::uint8
     return out;
 }
 
+// The open-surface target (docs/deep-sao.md): pixels with nothing within r
+// in the truth must keep an estimate of at least 0.99.
+bool is_open(const FloatImage& truth, std::size_t i) {
+    return truth.pixels[i * std::size_t(truth.channels)] >= 0.9999f;
+}
+
+long long count_open(const FloatImage& truth, const std::vector<std::uint8_t>& mask) {
+    long long count = 0;
+    for (std::size_t i = 0; i < mask.size(); ++i) count += mask[i] && is_open(truth, i);
+    return count;
+}
+
+// Open pixels (of mask) whose estimate falls below 0.99.
+long long count_open_below(const FloatImage& estimate, const FloatImage& truth,
+                           const std::vector<std::uint8_t>& mask) {
+    long long count = 0;
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        if (mask[i] && is_open(truth, i))
+            count += estimate.pixels[i * std::size_t(estimate.channels)] < 0.99f;
+    }
+    return count;
+}
+
 int nearest(const std::vector<int>& values, int target) {
     int best = values.front();
     for (int v : values) {
@@ -262,6 +285,10 @@ const std::vector<std::string>& value_columns() {
         "ref_accum_rmse",
         "ref_accum_bias",
         "ref_pixels",
+        "ref_open_pixels",
+        "ref_open_raw_below",
+        "ref_open_blur_below",
+        "ref_open_accum_below",
         "rad_conv_raw_rel_mae",
         "rad_conv_raw_rel_rmse",
         "rad_conv_blur_rel_mae",
@@ -289,12 +316,12 @@ std::optional<double> Row::get(std::string_view column) const {
 }
 
 std::string format_csv(const std::vector<Row>& rows) {
-    std::string text = "scene,pattern,taps,layers,device";
+    std::string text = "scene,pattern,taps,layers,ao_method,device";
     for (const std::string& column : value_columns()) text += "," + column;
     text += "\n";
     for (const Row& row : rows) {
-        text += fmt::format("{},{},{},{},{}", csv_field(row.scene), csv_field(row.pattern),
-                            row.taps, row.layers, csv_field(row.device));
+        text += fmt::format("{},{},{},{},{},{}", csv_field(row.scene), csv_field(row.pattern),
+                            row.taps, row.layers, csv_field(row.ao_method), csv_field(row.device));
         for (const std::string& column : value_columns()) {
             const auto value = row.get(column);
             text += value ? fmt::format(",{}", *value) : ",";
@@ -334,17 +361,19 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
     text += fmt::format(
         "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
         "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
-        "\"seconds\":{}",
+        "\"image_pattern\":{},\"image_taps\":{},\"seconds\":{}",
         json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
-        info.seconds);
+        json_string(info.image_pattern), info.image_taps, info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];
-        text += fmt::format("{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{},\"device\":{}",
-                            json_string(row.scene), json_string(row.pattern), row.taps, row.layers,
-                            json_string(row.device));
+        text += fmt::format(
+            "{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{},\"ao_method\":{},"
+            "\"device\":{}",
+            json_string(row.scene), json_string(row.pattern), row.taps, row.layers,
+            json_string(row.ao_method), json_string(row.device));
         for (const std::string& column : value_columns()) {
             const auto value = row.get(column);
             text += fmt::format(",\"{}\":{}", column, value ? json_number(*value) : "null");
@@ -397,6 +426,14 @@ void validate(const ReportOptions& options) {
                             name));
     }
     if (options.layers.empty()) throw InputError("--layers needs at least one layer count");
+    if (options.ao_methods.empty()) throw InputError("--ao-methods needs at least one method");
+    for (std::size_t i = 0; i < options.ao_methods.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+            if (options.ao_methods[i] == options.ao_methods[j])
+                throw InputError(
+                    fmt::format("--ao-methods names '{}' twice", to_string(options.ao_methods[i])));
+        }
+    }
     for (int layers : options.layers) {
         if (layers < 1 || layers > limits::max_ao_layers)
             throw InputError(fmt::format("--layers {} is out of range (1 to {})", layers,
@@ -475,6 +512,8 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.converged_taps = options.converged_taps;
     result.info.warmup = options.warmup;
     result.info.frames = options.frames;
+    result.info.image_pattern = image_pattern;
+    result.info.image_taps = image_taps;
 
     for (const std::string& scene_name : options.scenes) {
         const Scene scene = load_scene(scene_name);
@@ -513,178 +552,217 @@ ReportResult run_report(const ReportOptions& options) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start)
                 .count()));
 
-        // The converged screen-space result, one per layer count.
-        std::map<int, Frame> converged;
-        write_headers(headers.path(), "optimal", options.converged_taps);
-        {
-            Renderer renderer(scene, settings, loader);
-            for (int layers : options.layers) {
-                RenderSettings s = settings;
-                s.ao.layers = layers;
-                s.radiosity.layers = layers;
-                renderer.set_settings(s);
-                renderer.render(camera, CameraMotion::cut);
-                converged[layers] = read_frame(renderer);
-            }
-        }
+        for (std::size_t method_index = 0; method_index < options.ao_methods.size();
+             ++method_index) {
+            const AoMethod method = options.ao_methods[method_index];
+            const std::string method_name(to_string(method));
+            RenderSettings method_settings = settings;
+            method_settings.ao.method = method;
+            method_settings.ao.bias = default_ao_bias(method);
+            // The first method compares the patterns; the others are curves
+            // (or, for the march, one point) beside it (ReportOptions).
+            const bool gathers_taps = ao_method_gathers_taps(method);
+            const std::vector<std::string> patterns =
+                method_index == 0 ? options.patterns : std::vector<std::string>{image_pattern};
+            const std::vector<int> tap_counts =
+                gathers_taps ? options.taps : std::vector<int>{image_taps};
 
-        for (const std::string& pattern : options.patterns) {
-            for (int n : options.taps) {
-                write_headers(headers.path(), pattern, n);
-                const Turns turns = pattern_turns(pattern, n);
-                const double discrepancy = spiral::discrepancy(n, turns.p, turns.m).value();
-                Renderer renderer(scene, settings, loader);
-                result.info.cpu_clock = renderer.timing_uses_cpu_clock();
+            // The converged screen-space result, one per layer count. A
+            // method that gathers no taps has no converged AO (it would
+            // equal itself); its rows still compare radiosity against it.
+            std::map<int, Frame> converged;
+            write_headers(headers.path(), "optimal", options.converged_taps);
+            {
+                Renderer renderer(scene, method_settings, loader);
                 for (int layers : options.layers) {
-                    RenderSettings s = settings;
+                    RenderSettings s = method_settings;
                     s.ao.layers = layers;
                     s.radiosity.layers = layers;
                     renderer.set_settings(s);
-                    // Errors from the first frame after a cut: no history in it.
                     renderer.render(camera, CameraMotion::cut);
-                    const Frame frame = read_frame(renderer);
-                    const Frame& reference_frame = converged.at(layers);
+                    converged[layers] = read_frame(renderer);
+                }
+            }
 
-                    const auto surface =
-                        viewport_mask(internal_width, internal_height, guard,
-                                      [&](int x, int y) { return frame.depth.at(x, y) > 0.0f; });
-                    // Only where raster and ray tracer see the same surface:
-                    // silhouette pixels would compare different points.
-                    const auto agreed =
-                        viewport_mask(internal_width, internal_height, guard, [&](int x, int y) {
-                            const float a = frame.depth.at(x, y);
-                            const float b = truth.depth_layer0.at(x, y);
-                            return a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b;
-                        });
+            for (const std::string& pattern : patterns) {
+                for (int n : tap_counts) {
+                    write_headers(headers.path(), pattern, n);
+                    const Turns turns = pattern_turns(pattern, n);
+                    const double discrepancy = spiral::discrepancy(n, turns.p, turns.m).value();
+                    Renderer renderer(scene, method_settings, loader);
+                    result.info.cpu_clock = renderer.timing_uses_cpu_clock();
+                    for (int layers : options.layers) {
+                        RenderSettings s = method_settings;
+                        s.ao.layers = layers;
+                        s.radiosity.layers = layers;
+                        renderer.set_settings(s);
+                        // Errors from the first frame after a cut: no history in it.
+                        renderer.render(camera, CameraMotion::cut);
+                        const Frame frame = read_frame(renderer);
+                        const Frame& reference_frame = converged.at(layers);
 
-                    const ErrorStats conv_raw =
-                        compare_images(frame.ao_raw, reference_frame.ao_raw, surface);
-                    const ErrorStats conv_blur =
-                        compare_images(frame.ao_blurred, reference_frame.ao_blurred, surface);
-                    const ErrorStats ref_raw =
-                        compare_images(frame.ao_raw, truth.ambient_visibility, agreed);
-                    const ErrorStats ref_blur =
-                        compare_images(frame.ao_blurred, truth.ambient_visibility, agreed);
-                    const double radiosity_scale =
-                        masked_mean(reference_frame.radiosity_raw, surface);
-                    const double radiosity_blur_scale =
-                        masked_mean(reference_frame.radiosity_blurred, surface);
-                    const ErrorStats rad_raw = relative(
-                        compare_images(frame.radiosity_raw, reference_frame.radiosity_raw, surface),
-                        radiosity_scale);
-                    const ErrorStats rad_blur =
-                        relative(compare_images(frame.radiosity_blurred,
-                                                reference_frame.radiosity_blurred, surface),
-                                 radiosity_blur_scale);
-                    // Radiosity against the truth, relative to the truth's mean
-                    // over the compared pixels (the same for every stage).
-                    const double truth_irradiance_mean =
-                        truth_irradiance ? masked_mean(*truth_irradiance, agreed) : 0.0;
-                    auto against_irradiance =
-                        [&](const FloatImage& estimate) -> std::optional<ErrorStats> {
-                        if (!truth_irradiance) return std::nullopt;
-                        return relative(compare_images(estimate, *truth_irradiance, agreed),
-                                        truth_irradiance_mean);
-                    };
-                    const std::optional<ErrorStats> rad_ref_raw =
-                        against_irradiance(frame.radiosity_raw);
-                    const std::optional<ErrorStats> rad_ref_blur =
-                        against_irradiance(frame.radiosity_blurred);
+                        const auto surface = viewport_mask(
+                            internal_width, internal_height, guard,
+                            [&](int x, int y) { return frame.depth.at(x, y) > 0.0f; });
+                        // Only where raster and ray tracer see the same surface:
+                        // silhouette pixels would compare different points.
+                        const auto agreed = viewport_mask(
+                            internal_width, internal_height, guard, [&](int x, int y) {
+                                const float a = frame.depth.at(x, y);
+                                const float b = truth.depth_layer0.at(x, y);
+                                return a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b;
+                            });
 
-                    if (pattern == image_pattern && n == image_taps && layers == image_layers) {
-                        const std::string stem = file_stem(scene_name);
-                        write_pfm(options.output / "images" / (stem + "-truth.pfm"),
-                                  crop(truth.ambient_visibility, guard, agreed));
-                        write_pfm(options.output / "images" / (stem + "-estimate.pfm"),
-                                  crop(frame.ao_blurred, guard, agreed));
+                        const ErrorStats conv_raw =
+                            compare_images(frame.ao_raw, reference_frame.ao_raw, surface);
+                        const ErrorStats conv_blur =
+                            compare_images(frame.ao_blurred, reference_frame.ao_blurred, surface);
+                        const ErrorStats ref_raw =
+                            compare_images(frame.ao_raw, truth.ambient_visibility, agreed);
+                        const ErrorStats ref_blur =
+                            compare_images(frame.ao_blurred, truth.ambient_visibility, agreed);
+                        const double radiosity_scale =
+                            masked_mean(reference_frame.radiosity_raw, surface);
+                        const double radiosity_blur_scale =
+                            masked_mean(reference_frame.radiosity_blurred, surface);
+                        const ErrorStats rad_raw =
+                            relative(compare_images(frame.radiosity_raw,
+                                                    reference_frame.radiosity_raw, surface),
+                                     radiosity_scale);
+                        const ErrorStats rad_blur =
+                            relative(compare_images(frame.radiosity_blurred,
+                                                    reference_frame.radiosity_blurred, surface),
+                                     radiosity_blur_scale);
+                        // Radiosity against the truth, relative to the truth's mean
+                        // over the compared pixels (the same for every stage).
+                        const double truth_irradiance_mean =
+                            truth_irradiance ? masked_mean(*truth_irradiance, agreed) : 0.0;
+                        auto against_irradiance =
+                            [&](const FloatImage& estimate) -> std::optional<ErrorStats> {
+                            if (!truth_irradiance) return std::nullopt;
+                            return relative(compare_images(estimate, *truth_irradiance, agreed),
+                                            truth_irradiance_mean);
+                        };
+                        const std::optional<ErrorStats> rad_ref_raw =
+                            against_irradiance(frame.radiosity_raw);
+                        const std::optional<ErrorStats> rad_ref_blur =
+                            against_irradiance(frame.radiosity_blurred);
+
+                        if (pattern == image_pattern && n == image_taps && layers == image_layers) {
+                            const std::string stem = file_stem(scene_name);
+                            write_pfm(options.output / "images" / (stem + "-truth.pfm"),
+                                      crop(truth.ambient_visibility, guard, agreed));
+                            write_pfm(options.output / "images" /
+                                          (stem + "-estimate-" + method_name + ".pfm"),
+                                      crop(frame.ao_blurred, guard, agreed));
+                        }
+
+                        // Continuous static frames after the cut: the timed ones
+                        // (so history-based passes do what they do in an
+                        // animation), and at least the rest of a rotation cycle,
+                        // after which the accumulated errors are read.
+                        std::map<std::string, std::vector<double>> samples;
+                        const int timed_end = options.warmup + options.frames;
+                        std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
+                            rad_ref_accum;
+                        std::optional<double> open_accum;
+                        for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
+                            renderer.render(camera);
+                            if (i >= options.warmup && i < timed_end) {
+                                for (const auto& timing : renderer.last_timings())
+                                    samples[timing.pass].push_back(timing.milliseconds);
+                            }
+                            if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
+                            if (has_output(renderer, kTemporalAoOutput)) {
+                                ref_temporal =
+                                    compare_images(renderer.read_pass_output(kTemporalAoOutput),
+                                                   truth.ambient_visibility, agreed);
+                            }
+                            const FloatImage accumulated =
+                                clamped_visibility(renderer.read_pass_output("ao-blurred"));
+                            ref_accum =
+                                compare_images(accumulated, truth.ambient_visibility, agreed);
+                            open_accum = double(
+                                count_open_below(accumulated, truth.ambient_visibility, agreed));
+                            if (has_output(renderer, kTemporalIrradianceOutput)) {
+                                rad_ref_temporal = against_irradiance(
+                                    renderer.read_pass_output(kTemporalIrradianceOutput));
+                            }
+                            rad_ref_accum =
+                                against_irradiance(renderer.read_pass_output("radiosity-blurred"));
+                        }
+
+                        Row row;
+                        row.scene = scene_name;
+                        row.pattern = pattern;
+                        row.taps = n;
+                        row.layers = layers;
+                        row.ao_method = method_name;
+                        row.device = result.info.renderer;
+                        auto add = [&](const std::string& column, std::optional<double> value) {
+                            row.values.push_back({column, value ? finite(*value) : std::nullopt});
+                        };
+                        auto ms = [&](const std::string& pass) -> std::optional<double> {
+                            const auto it = samples.find(pass);
+                            if (it == samples.end()) return std::nullopt;
+                            return median(it->second);
+                        };
+                        auto field = [](const std::optional<ErrorStats>& s,
+                                        double ErrorStats::*member) -> std::optional<double> {
+                            if (!s) return std::nullopt;
+                            return (*s).*member;
+                        };
+                        add("discrepancy", discrepancy);
+                        add("turns", turns.value());
+                        add("sao_ms", ms("sao"));
+                        add("ao_blur_ms", ms("ao_blur"));
+                        add("radiosity_ms", ms("radiosity"));
+                        auto if_gathers = [&](double value) -> std::optional<double> {
+                            if (!gathers_taps) return std::nullopt;
+                            return value;
+                        };
+                        add("conv_raw_mae", if_gathers(conv_raw.mae));
+                        add("conv_raw_rmse", if_gathers(conv_raw.rmse));
+                        add("conv_blur_mae", if_gathers(conv_blur.mae));
+                        add("conv_blur_rmse", if_gathers(conv_blur.rmse));
+                        // MAE, RMSE and bias of one comparison; empty cells where
+                        // the build or the reference cannot measure it.
+                        auto add_stats = [&](const std::string& prefix,
+                                             const std::optional<ErrorStats>& stats) {
+                            add(prefix + "_mae", field(stats, &ErrorStats::mae));
+                            add(prefix + "_rmse", field(stats, &ErrorStats::rmse));
+                            add(prefix + "_bias", field(stats, &ErrorStats::bias));
+                        };
+                        add_stats("ref_raw", ref_raw);
+                        add_stats("ref_blur", ref_blur);
+                        add_stats("ref_temporal", ref_temporal);
+                        add_stats("ref_accum", ref_accum);
+                        add("ref_pixels", double(ref_blur.pixels));
+                        add("ref_open_pixels",
+                            double(count_open(truth.ambient_visibility, agreed)));
+                        add("ref_open_raw_below",
+                            double(
+                                count_open_below(frame.ao_raw, truth.ambient_visibility, agreed)));
+                        add("ref_open_blur_below",
+                            double(count_open_below(frame.ao_blurred, truth.ambient_visibility,
+                                                    agreed)));
+                        add("ref_open_accum_below", open_accum);
+                        add("rad_conv_raw_rel_mae", rad_raw.mae);
+                        add("rad_conv_raw_rel_rmse", rad_raw.rmse);
+                        add("rad_conv_blur_rel_mae", rad_blur.mae);
+                        add("rad_conv_blur_rel_rmse", rad_blur.rmse);
+                        add_stats("rad_ref_raw_rel", rad_ref_raw);
+                        add_stats("rad_ref_blur_rel", rad_ref_blur);
+                        add_stats("rad_ref_temporal_rel", rad_ref_temporal);
+                        add_stats("rad_ref_accum_rel", rad_ref_accum);
+                        log(fmt::format(
+                            "{} {} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {}, vs "
+                            "reference {:.4f} raw {:.4f} blurred",
+                            scene_name, method_name, pattern, n, layers, ms("sao").value_or(0.0),
+                            gathers_taps ? fmt::format("{:.4f}", conv_raw.mae) : std::string("-"),
+                            ref_raw.mae, ref_blur.mae));
+                        result.rows.push_back(std::move(row));
                     }
-
-                    // Continuous static frames after the cut: the timed ones
-                    // (so history-based passes do what they do in an
-                    // animation), and at least the rest of a rotation cycle,
-                    // after which the accumulated errors are read.
-                    std::map<std::string, std::vector<double>> samples;
-                    const int timed_end = options.warmup + options.frames;
-                    std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
-                        rad_ref_accum;
-                    for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
-                        renderer.render(camera);
-                        if (i >= options.warmup && i < timed_end) {
-                            for (const auto& timing : renderer.last_timings())
-                                samples[timing.pass].push_back(timing.milliseconds);
-                        }
-                        if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
-                        if (has_output(renderer, kTemporalAoOutput)) {
-                            ref_temporal =
-                                compare_images(renderer.read_pass_output(kTemporalAoOutput),
-                                               truth.ambient_visibility, agreed);
-                        }
-                        ref_accum = compare_images(
-                            clamped_visibility(renderer.read_pass_output("ao-blurred")),
-                            truth.ambient_visibility, agreed);
-                        if (has_output(renderer, kTemporalIrradianceOutput)) {
-                            rad_ref_temporal = against_irradiance(
-                                renderer.read_pass_output(kTemporalIrradianceOutput));
-                        }
-                        rad_ref_accum =
-                            against_irradiance(renderer.read_pass_output("radiosity-blurred"));
-                    }
-
-                    Row row;
-                    row.scene = scene_name;
-                    row.pattern = pattern;
-                    row.taps = n;
-                    row.layers = layers;
-                    row.device = result.info.renderer;
-                    auto add = [&](const std::string& column, std::optional<double> value) {
-                        row.values.push_back({column, value ? finite(*value) : std::nullopt});
-                    };
-                    auto ms = [&](const std::string& pass) -> std::optional<double> {
-                        const auto it = samples.find(pass);
-                        if (it == samples.end()) return std::nullopt;
-                        return median(it->second);
-                    };
-                    auto field = [](const std::optional<ErrorStats>& s,
-                                    double ErrorStats::*member) -> std::optional<double> {
-                        if (!s) return std::nullopt;
-                        return (*s).*member;
-                    };
-                    add("discrepancy", discrepancy);
-                    add("turns", turns.value());
-                    add("sao_ms", ms("sao"));
-                    add("ao_blur_ms", ms("ao_blur"));
-                    add("radiosity_ms", ms("radiosity"));
-                    add("conv_raw_mae", conv_raw.mae);
-                    add("conv_raw_rmse", conv_raw.rmse);
-                    add("conv_blur_mae", conv_blur.mae);
-                    add("conv_blur_rmse", conv_blur.rmse);
-                    // MAE, RMSE and bias of one comparison; empty cells where
-                    // the build or the reference cannot measure it.
-                    auto add_stats = [&](const std::string& prefix,
-                                         const std::optional<ErrorStats>& stats) {
-                        add(prefix + "_mae", field(stats, &ErrorStats::mae));
-                        add(prefix + "_rmse", field(stats, &ErrorStats::rmse));
-                        add(prefix + "_bias", field(stats, &ErrorStats::bias));
-                    };
-                    add_stats("ref_raw", ref_raw);
-                    add_stats("ref_blur", ref_blur);
-                    add_stats("ref_temporal", ref_temporal);
-                    add_stats("ref_accum", ref_accum);
-                    add("ref_pixels", double(ref_blur.pixels));
-                    add("rad_conv_raw_rel_mae", rad_raw.mae);
-                    add("rad_conv_raw_rel_rmse", rad_raw.rmse);
-                    add("rad_conv_blur_rel_mae", rad_blur.mae);
-                    add("rad_conv_blur_rel_rmse", rad_blur.rmse);
-                    add_stats("rad_ref_raw_rel", rad_ref_raw);
-                    add_stats("rad_ref_blur_rel", rad_ref_blur);
-                    add_stats("rad_ref_temporal_rel", rad_ref_temporal);
-                    add_stats("rad_ref_accum_rel", rad_ref_accum);
-                    log(fmt::format(
-                        "{} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {:.4f}, vs "
-                        "reference {:.4f} raw {:.4f} blurred",
-                        scene_name, pattern, n, layers, ms("sao").value_or(0.0), conv_raw.mae,
-                        ref_raw.mae, ref_blur.mae));
-                    result.rows.push_back(std::move(row));
                 }
             }
         }

@@ -149,6 +149,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     options.taps = {4, 32};
     options.patterns = {"optimal", "golden"};
     options.layers = {1, 2};
+    // The march runs once per layer count, at the tap count nearest the
+    // image's 11 (its radiosity gather still reads the taps).
+    options.ao_methods = {deepgi::AoMethod::solid_angle, deepgi::AoMethod::march};
     options.width = 96;
     options.height = 54;
     options.rays = 64;
@@ -158,7 +161,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     options.float_max_n = 64;
     options.output = output;
     const report::ReportResult result = report::run_report(options);
-    REQUIRE(result.rows.size() == 8);
+    REQUIRE(result.rows.size() == 10);
     const std::string device = deepgi::query_context_info().renderer;
     REQUIRE_FALSE(device.empty());
 
@@ -167,25 +170,47 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     std::string line;
     REQUIRE(std::getline(csv, line));
     const std::vector<std::string> header = split(line, ',');
-    REQUIRE(header.size() == 5 + report::value_columns().size());
+    REQUIRE(header.size() == 6 + report::value_columns().size());
     CHECK(header[0] == "scene");
-    CHECK(header[4] == "device");
+    CHECK(header[4] == "ao_method");
+    CHECK(header[5] == "device");
     std::map<std::string, std::size_t> column;
     for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
     std::set<std::string> combinations;
     std::map<int, std::vector<double>> sampling_error;
     // Each stage's error against the ray-traced truth, summed over the rows.
     std::map<std::string, double> stage_error;
+    // ref_open_blur_below of each method's image row (optimal, 4 taps, two layers).
+    std::map<std::string, double> open_blur_below;
     int rows = 0;
     while (std::getline(csv, line)) {
         const auto fields = split(line, ',');
         REQUIRE(fields.size() == header.size());
         ++rows;
         CHECK(fields[0] == "cornell");
-        CHECK(fields[4] == device);  // the context that timed the row labels it
-        combinations.insert(fields[1] + "/" + fields[2] + "/" + fields[3]);
+        CHECK(fields[5] == device);  // the context that timed the row labels it
+        const std::string& method = fields[4];
+        combinations.insert(method + "/" + fields[1] + "/" + fields[2] + "/" + fields[3]);
         const int taps = std::stoi(fields[2]);
-        sampling_error[taps].push_back(std::stod(fields[column.at("conv_raw_mae")]));
+        // The march gathers no taps, so it has no converged AO to compare with.
+        if (method == "march") {
+            CHECK(fields[column.at("conv_raw_mae")].empty());
+            CHECK(fields[column.at("conv_blur_mae")].empty());
+            CHECK_FALSE(fields[column.at("rad_conv_raw_rel_mae")].empty());
+        } else {
+            sampling_error[taps].push_back(std::stod(fields[column.at("conv_raw_mae")]));
+        }
+        // Open pixels below 0.99 are a subset of the open pixels.
+        const double open = std::stod(fields[column.at("ref_open_pixels")]);
+        CHECK(open > 0.0);
+        for (const char* stage :
+             {"ref_open_raw_below", "ref_open_blur_below", "ref_open_accum_below"}) {
+            const double below = std::stod(fields[column.at(stage)]);
+            CHECK(below >= 0.0);
+            CHECK(below <= open);
+        }
+        if (fields[1] == "optimal" && taps == 4 && fields[3] == "2")
+            open_blur_below[method] = std::stod(fields[column.at("ref_open_blur_below")]);
         const double ms = std::stod(fields[column.at("sao_ms")]);
         CHECK(ms > 0.0);
         const double reference_mae = std::stod(fields[column.at("ref_blur_mae")]);
@@ -208,10 +233,13 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     // raw gather, for AO and for radiosity alike.
     CHECK(stage_error["ref_temporal_mae"] < stage_error["ref_raw_mae"]);
     CHECK(stage_error["rad_ref_temporal_rel_mae"] < stage_error["rad_ref_raw_rel_mae"]);
-    CHECK(rows == 8);
-    CHECK(combinations.size() == 8);
-    for (const char* expected : {"optimal/4/1", "optimal/4/2", "optimal/32/1", "optimal/32/2",
-                                 "golden/4/1", "golden/4/2", "golden/32/1", "golden/32/2"}) {
+    CHECK(rows == 10);
+    CHECK(combinations.size() == 10);
+    for (const char* expected :
+         {"solid-angle/optimal/4/1", "solid-angle/optimal/4/2", "solid-angle/optimal/32/1",
+          "solid-angle/optimal/32/2", "solid-angle/golden/4/1", "solid-angle/golden/4/2",
+          "solid-angle/golden/32/1", "solid-angle/golden/32/2", "march/optimal/4/1",
+          "march/optimal/4/2"}) {
         CHECK(combinations.count(expected) == 1);
     }
     auto mean = [](const std::vector<double>& v) {
@@ -226,11 +254,24 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (std::size_t at = json.find("\"scene\":"); at != std::string::npos;
          at = json.find("\"scene\":", at + 1))
         ++json_rows;
-    CHECK(json_rows == 8);
-    CHECK(count_of(json, "\"device\":") == 8);
+    CHECK(json_rows == 10);
+    CHECK(count_of(json, "\"device\":") == 10);
+    CHECK(count_of(json, "\"ao_method\":\"march\"") == 2);
     CHECK(fs::exists(output / "discrepancy.csv"));
-    CHECK(fs::exists(output / "images" / "cornell-truth.pfm"));
-    CHECK(fs::exists(output / "images" / "cornell-estimate.pfm"));
+    // The images of each method, counted again from the files: the open
+    // pixels below 0.99 agree with the row the images came from.
+    const deepgi::FloatImage truth = deepgi::read_pfm(output / "images" / "cornell-truth.pfm");
+    for (const char* method : {"solid-angle", "march"}) {
+        INFO(method);
+        const auto path = output / "images" / fmt::format("cornell-estimate-{}.pfm", method);
+        REQUIRE(fs::exists(path));
+        const deepgi::FloatImage estimate = deepgi::read_pfm(path);
+        REQUIRE(estimate.pixels.size() == truth.pixels.size());
+        int below = 0;
+        for (std::size_t i = 0; i < truth.pixels.size(); ++i)
+            below += truth.pixels[i] >= 0.9999f && estimate.pixels[i] < 0.99f;
+        CHECK(double(below) == open_blur_below.at(method));
+    }
 
     // The numerical hard cases: one row per check, all passing. The expected
     // count follows from the documented case set.
@@ -313,6 +354,7 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
          {std::string("--taps 0"), std::string("--taps 4,x"), std::string("--patterns fibonacci"),
           std::string("--layers 3"), std::string("--size 10by10"), std::string("--rays -1"),
           std::string("--float-max-n -1"), std::string("--float-max-n 5000"),
+          std::string("--ao-methods horizon"), std::string("--ao-methods march,march"),
           std::string("--scenes no-such-scene")}) {
         const auto run = spiral::test::run_command(
             program + " report " + arguments + " --no-plots --output '" + output.string() + "'");

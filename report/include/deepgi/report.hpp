@@ -7,6 +7,7 @@
 // build's generated headers.
 #include "deepgi/hard_cases.hpp"
 #include "deepgi/image_io.hpp"
+#include "deepgi/settings.hpp"
 
 #include <spiral/codegen.hpp>
 #include <spiral/float_compare.hpp>
@@ -85,6 +86,7 @@ struct Row {
     std::string pattern;
     int taps = 0;
     int layers = 0;
+    std::string ao_method;  // to_string(AoMethod)
     // GL_RENDERER of the context that rendered and timed the row, so rows
     // from a GPU and from llvmpipe stay apart when files are merged.
     std::string device;
@@ -96,7 +98,7 @@ struct Row {
 // The measured columns, in order; docs/report.md says what each means.
 const std::vector<std::string>& value_columns();
 
-// scene,pattern,taps,layers,device,<value_columns...>; numbers in shortest
+// scene,pattern,taps,layers,ao_method,device,<value_columns...>; numbers in shortest
 // round-trip form, so reading a file back gives the same doubles. Text fields
 // holding a comma or a quote are quoted (RFC 4180): GL_RENDERER often does.
 std::string format_csv(const std::vector<Row>& rows);
@@ -137,6 +139,9 @@ struct ReportInfo {
     bool cpu_clock = true;
     int width = 0, height = 0, guard = 0, rays = 0, converged_taps = 0;
     int warmup = 0, frames = 0;
+    // The configuration of the per-scene images, which every AO method runs.
+    std::string image_pattern;
+    int image_taps = 0;
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
@@ -154,6 +159,13 @@ struct ReportOptions {
     std::vector<int> taps = {4, 8, 11, 16, 32, 64};
     std::vector<std::string> patterns = {"optimal", "tau1", "golden", "m2", "m4", "m8"};
     std::vector<int> layers = {1, 2};
+    // Deep SAO estimators. The first runs every pattern at every tap count;
+    // the others run the image pattern only: at every tap count where the
+    // method gathers the spiral's taps, and once (at the image tap count,
+    // which the radiosity gather of the row still uses) for the march,
+    // whose samples DEEPGI_AO_MARCH_RAYS and _STEPS fix.
+    std::vector<AoMethod> ao_methods = {AoMethod::solid_angle, AoMethod::published,
+                                        AoMethod::march};
     int width = 320;
     int height = 180;
     int rays = 512;            // reference rays per pixel; 0: deepgi reference's adaptive budgets
@@ -188,8 +200,8 @@ struct ReportResult {
 
 // Renders everything and writes into options.output (created if missing):
 // report.csv, report.json, discrepancy.csv (D(n) of every pattern for
-// n = 1..64), images/<scene>-{truth,estimate}.pfm (viewport only,
-// NaN where not compared), stability.csv and float_vs_exact.csv (each
+// n = 1..64), images/<scene>-truth.pfm and images/<scene>-estimate-<method>.pfm
+// per AO method (viewport only, NaN where not compared), stability.csv and float_vs_exact.csv (each
 // unless skipped). Needs a current GL context. Every file is
 // written atomically.
 ReportResult run_report(const ReportOptions& options);

@@ -127,6 +127,12 @@ constexpr float default_ao_bias(AoMethod method) {
     return method == AoMethod::published ? 0.01f : 0.0f;
 }
 
+// Whether the estimator reads the spiral tap header (ao_taps.glsl): the march
+// casts DEEPGI_AO_MARCH_RAYS rays of its own instead.
+constexpr bool ao_method_gathers_taps(AoMethod method) {
+    return method != AoMethod::march;
+}
+
 // Deep SAO (design.md 3, step 4; docs/deep-sao.md). Tap count and spiral turns
 // come from the generated ao_taps.glsl, not from here.
 struct AoSettings {
