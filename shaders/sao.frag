@@ -22,6 +22,9 @@
 
 layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
 layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+// March only: per layer, the nearest back face at or behind the stored
+// surface (reversed Z, 0 = none), where that surface's object ends.
+layout(binding = DEEPGI_UNIT_BACKFACE_DEPTH) uniform sampler2DArray backface_depth;
 
 // x: world-space radius r (m), y: bias beta (m), z: intensity (exponent), w: q (px)
 layout(location = DEEPGI_UNIFORM_SAO_PARAMETERS) uniform vec4 sao_parameters;
@@ -31,7 +34,8 @@ layout(location = DEEPGI_UNIFORM_SAO_MAX_MIP) uniform int max_mip;
 // ray-traced reference, estimated over the visible surface (below).
 // DEEPGI_AO_METHOD_MARCH: the reference's own rays, marched (below).
 layout(location = DEEPGI_UNIFORM_SAO_METHOD) uniform int ao_method;
-// March only: how deep (m) behind each stored surface the scene is taken as solid.
+// March only: how deep (m) behind a stored surface with no back face behind
+// it (an open mesh: a floor, a wall plane) the scene is taken as solid.
 layout(location = DEEPGI_UNIFORM_SAO_THICKNESS) uniform float thickness;
 
 layout(location = 0) out float out_visibility;
@@ -94,16 +98,20 @@ float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
 // The march estimator: the reference's definition, AV = 1 - mean f(d) over
 // cosine-weighted rays, f(d) = 1 - d^2 / r^2 for the first hit at d < r,
 // estimated with rays marched through the two depth layers. The layers store
-// surfaces, not solids, so each stored surface is taken as a slab `thickness`
-// deep behind it along the view ray; that guess is what lets a ray find the
-// occluders no layer stores (the unseen strip of a wall seen at a grazing
-// angle beside a crease, board undersides), and what darkens open surfaces
-// behind parts thinner than the slab (docs/deep-sao.md, "The march").
+// surfaces, not solids, so each stored surface is taken as the front of a
+// solid that reaches back along the view ray to the nearest back face behind
+// it (backface_depth.frag): the far side of a closed object. That is what
+// lets a ray find the occluders no layer stores (board undersides, the unseen
+// strip of a wall seen at a grazing angle beside a crease) without darkening
+// open surfaces behind thin parts and past convex corners, as a slab of fixed
+// depth did (docs/deep-sao.md, "The march"). The solid is at least two steps
+// deep, so that a ray crossing a thin part lands inside it; behind an open
+// mesh (no back face) it is `thickness` deep.
 //
 // A step's point q, projected to pixel p, is inside when it lies
 //   - behind the depth stored at p: the plane alone is not enough, as the
 //     plane of a surface seen edge-on runs along the view ray;
-//   - less than `thickness` behind it;
+//   - in front of where that surface's solid ends;
 //   - behind that surface's plane by more than the bias plus 1 mm per metre
 //     of depth, the reconstruction error of a stored point and its normal,
 //     so that a ray leaving X's own surface at a grazing angle does not hit it.
@@ -143,7 +151,11 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
       vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
       for (int layer = 0; layer < AO_LAYERS && hit < 0.0; ++layer) {
         float depth = layer == 0 ? depths.r : depths.g;
-        if (depth <= 0.0 || z <= depth || z >= depth + thickness) continue;
+        if (depth <= 0.0 || z <= depth) continue;
+        float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
+        float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
+                                          : depth + thickness;
+        if (z >= solid_end) continue;
         vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
         vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
         float below = dot(q - surface, surface_normal);

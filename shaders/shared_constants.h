@@ -42,6 +42,7 @@
 #define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
 #define DEEPGI_UNIT_SHADOW_CUBE 27         // point light: depth cube map, one perspective face per axis
 #define DEEPGI_UNIT_AO_TEMPORAL 28         // temporally filtered visibility (debug view)
+#define DEEPGI_UNIT_BACKFACE_DEPTH 29      // DEPTH32F array, reversed Z: per layer, the nearest back face behind it (the march)
 
 // Image units (compute shaders).
 #define DEEPGI_IMAGE_PYRAMID_SOURCE 0
@@ -83,6 +84,7 @@
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
 #define DEEPGI_UNIFORM_RADIOSITY_METHOD 37      // int: DEEPGI_RADIOSITY_METHOD_*
 #define DEEPGI_UNIFORM_SAO_THICKNESS 38         // float: slab behind each stored surface (m), march only
+#define DEEPGI_UNIFORM_BACKFACE_LAYER 39        // int: the G-buffer layer the back faces must lie behind
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

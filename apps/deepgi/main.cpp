@@ -270,8 +270,8 @@ int main(int argc, char** argv) {
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
         ->capture_default_str();
     app.add_option("--ao-thickness", options.ao.thickness,
-                   "Deep SAO, march: the scene is taken as solid this deep behind every stored "
-                   "surface (m)")
+                   "Deep SAO, march: the scene is taken as solid this deep behind a stored "
+                   "surface with no back face behind it (m)")
         ->capture_default_str();
     app.add_option("--ao-q", options.ao.q,
                    fmt::format("Deep SAO: tap radius (px) per MIP level step (at least {})",

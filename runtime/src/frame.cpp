@@ -50,6 +50,7 @@ const std::vector<PassFactory>& default_pass_list() {
     static const std::vector<PassFactory> passes = {
         make_shadow_pass,             //
         make_gbuffer_pass,            //
+        make_backface_depth_pass,     // the march only
         make_direct_light_pass,       //
         make_depth_pyramid_pass,      //
         make_sao_pass,                //

@@ -11,6 +11,8 @@ catch_discover_tests(deepgi_reference_tests PROPERTIES LABELS runtime TIMEOUT 30
 add_executable(deepgi_ao_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/ao_accuracy_test.cpp)
 target_link_libraries(deepgi_ao_accuracy_tests PRIVATE deepgi::reference spiral_catch_main)
 target_include_directories(deepgi_ao_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/runtime/src)
+# The blur's reach in pixels, for what counts as open after the blur.
+target_compile_definitions(deepgi_ao_accuracy_tests PRIVATE SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS})
 add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
 set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 600)
 

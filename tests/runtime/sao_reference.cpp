@@ -27,8 +27,9 @@ glm::vec3 camera_position(float centre_x, float centre_y, float depth, const Sao
 }
 
 // The march (sao.frag, march_visibility): AV = 1 - mean f(d) over cosine-
-// weighted rays, each marched until it is first inside a slab `thickness`
-// deep behind a stored surface.
+// weighted rays, each marched until it is first inside the solid behind a
+// stored surface: to its back face (at least two steps deep), or `thickness`
+// deep where it has none.
 float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const SaoInputs& inputs,
                        const AoSettings& settings) {
     const FloatImage& base = inputs.pyramid.at(0);
@@ -68,7 +69,12 @@ float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const
             const int px = int(at_x), py = int(at_y);
             for (int layer = 0; layer < settings.layers && hit < 0.0f; ++layer) {
                 const float depth = base.at(px, py, layer);
-                if (depth <= 0.0f || z <= depth || z >= depth + settings.thickness) continue;
+                if (depth <= 0.0f || z <= depth) continue;
+                const float back_face = inputs.back_faces.at(std::size_t(layer)).at(px, py);
+                const float solid_end = back_face > 0.0f
+                                            ? std::max(back_face, depth + 2.0f * step_length)
+                                            : depth + settings.thickness;
+                if (z >= solid_end) continue;
                 const glm::vec3 surface =
                     camera_position(float(px) + 0.5f, float(py) + 0.5f, depth, inputs);
                 const FloatImage& normals = layer == 0 ? inputs.normals : inputs.normals_layer1;

@@ -24,6 +24,9 @@ struct SaoInputs {
         pyramid;                // level m: channel 0 layer-0 depth, 1 layer-1 depth; 0 = no surface
     FloatImage normals;         // layer-0 camera-space normals, 3 channels
     FloatImage normals_layer1;  // layer-1 normals (read by the solid-angle method)
+    // The march only: per layer, the linear depth of the nearest back face at
+    // or behind the stored surface (0 = none), as the back-face pass wrote it.
+    std::vector<FloatImage> back_faces;
     glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
     float near_plane = 0.05f;   // the camera's (m): the march stops in front of it
 };

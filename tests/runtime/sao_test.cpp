@@ -30,6 +30,11 @@ FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings
     }
     frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
     frame.inputs.normals_layer1 = renderer.read_pass_output("gbuffer-normal-layer1");
+    if (settings.ao.method == AoMethod::march) {
+        for (int layer = 0; layer < settings.ao.layers; ++layer)
+            frame.inputs.back_faces.push_back(
+                renderer.read_pass_output(fmt::format("backface-depth-layer{}", layer)));
+    }
     frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
     frame.inputs.near_plane = scene.default_camera.near_plane;
     frame.raw = renderer.read_pass_output("ao-raw");

@@ -13,6 +13,7 @@ std::unique_ptr<Pass> make_shadow_pass(const ShaderLoader& loader, const Scene& 
 // computes it on resize, and the renderer again when the light is edited.
 ShadowProjection shadow_projection(const Scene& scene, int size);
 std::unique_ptr<Pass> make_gbuffer_pass(const ShaderLoader& loader, const Scene& scene);
+std::unique_ptr<Pass> make_backface_depth_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_sao_pass(const ShaderLoader& loader, const Scene& scene);

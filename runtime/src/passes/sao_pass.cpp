@@ -32,6 +32,8 @@ public:
         begin_fullscreen(framebuffer_.get(), width_, height_);
         glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
+        if (settings.method == AoMethod::march)
+            glBindTextureUnit(DEEPGI_UNIT_BACKFACE_DEPTH, frame.texture("backface.depth"));
         glProgramUniform4f(program, DEEPGI_UNIFORM_SAO_PARAMETERS, settings.radius, settings.bias,
                            settings.intensity, settings.q);
         glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP,

@@ -1,0 +1,18 @@
+#version 450 core
+// Where the solid behind each G-buffer layer ends (docs/deep-sao.md, "The
+// march"): drawn with front faces culled, one draw per layer, keeping only
+// back faces at or behind that layer's stored depth; the reversed-Z depth
+// test keeps the nearest of them. For closed meshes seen from outside that is
+// the far side of the object the layer shows. The march reads it as the
+// depth of that object; 0 (nothing kept) leaves it to the fixed thickness.
+#include "shared_constants.h"
+
+layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;  // reversed Z
+layout(location = DEEPGI_UNIFORM_BACKFACE_LAYER) uniform int layer;
+
+void main() {
+  float stored = texelFetch(gbuffer_depth, ivec3(gl_FragCoord.xy, layer), 0).r;
+  // Reversed Z: a smaller value is further away. No surface stored, or a back
+  // face in front of the stored one (inside an open mesh): nothing to keep.
+  if (stored <= 0.0 || gl_FragCoord.z > stored) discard;
+}
