@@ -210,6 +210,33 @@ long long count_open_below(const FloatImage& estimate, const FloatImage& truth,
     return count;
 }
 
+// The pixels of mask that are open and whose neighbours within `reach`
+// pixels (a square) are open too: what the open-surface target counts
+// (docs/deep-sao.md, "Current figures"). Reach 1 before the blur, where the
+// truth's own Monte Carlo estimate reads 1 next to occluded pixels when an
+// occluder's reach ends inside the pixel; the blur's radius after it, which
+// rightly averages neighbours' occlusion in, as a blur of the truth would.
+std::vector<std::uint8_t> open_surroundings(const FloatImage& truth,
+                                            const std::vector<std::uint8_t>& mask, int reach) {
+    const int w = truth.width, h = truth.height;
+    std::vector<std::uint8_t> result(mask.size(), 0);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            if (!mask[i]) continue;
+            bool open = true;
+            for (int v = std::max(0, y - reach); open && v <= std::min(h - 1, y + reach); ++v) {
+                for (int u = std::max(0, x - reach); open && u <= std::min(w - 1, x + reach); ++u)
+                    open = is_open(truth, std::size_t(v) * std::size_t(w) + std::size_t(u));
+            }
+            result[i] = open ? 1 : 0;
+        }
+    }
+    return result;
+}
+constexpr int kRawOpenReach = 1;
+constexpr int kBlurOpenReach = DEEPGI_REPORT_BLUR_RADIUS;
+
 int nearest(const std::vector<int>& values, int target) {
     int best = values.front();
     for (int v : values) {
@@ -289,6 +316,9 @@ const std::vector<std::string>& value_columns() {
         "ref_open_raw_below",
         "ref_open_blur_below",
         "ref_open_accum_below",
+        "ref_open_core_raw_below",
+        "ref_open_core_blur_below",
+        "ref_open_core_accum_below",
         "rad_conv_raw_rel_mae",
         "rad_conv_raw_rel_rmse",
         "rad_conv_blur_rel_mae",
@@ -665,7 +695,11 @@ ReportResult run_report(const ReportOptions& options) {
                         const int timed_end = options.warmup + options.frames;
                         std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
                             rad_ref_accum;
-                        std::optional<double> open_accum;
+                        std::optional<double> open_accum, open_core_accum;
+                        const auto raw_open_mask =
+                            open_surroundings(truth.ambient_visibility, agreed, kRawOpenReach);
+                        const auto blur_open_mask =
+                            open_surroundings(truth.ambient_visibility, agreed, kBlurOpenReach);
                         for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
                             renderer.render(camera);
                             if (i >= options.warmup && i < timed_end) {
@@ -684,6 +718,8 @@ ReportResult run_report(const ReportOptions& options) {
                                 compare_images(accumulated, truth.ambient_visibility, agreed);
                             open_accum = double(
                                 count_open_below(accumulated, truth.ambient_visibility, agreed));
+                            open_core_accum = double(count_open_below(
+                                accumulated, truth.ambient_visibility, blur_open_mask));
                             if (has_output(renderer, kTemporalIrradianceOutput)) {
                                 rad_ref_temporal = against_irradiance(
                                     renderer.read_pass_output(kTemporalIrradianceOutput));
@@ -747,6 +783,13 @@ ReportResult run_report(const ReportOptions& options) {
                             double(count_open_below(frame.ao_blurred, truth.ambient_visibility,
                                                     agreed)));
                         add("ref_open_accum_below", open_accum);
+                        add("ref_open_core_raw_below",
+                            double(count_open_below(frame.ao_raw, truth.ambient_visibility,
+                                                    raw_open_mask)));
+                        add("ref_open_core_blur_below",
+                            double(count_open_below(frame.ao_blurred, truth.ambient_visibility,
+                                                    blur_open_mask)));
+                        add("ref_open_core_accum_below", open_core_accum);
                         add("rad_conv_raw_rel_mae", rad_raw.mae);
                         add("rad_conv_raw_rel_rmse", rad_raw.rmse);
                         add("rad_conv_blur_rel_mae", rad_blur.mae);

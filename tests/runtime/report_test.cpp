@@ -203,11 +203,17 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         // Open pixels below 0.99 are a subset of the open pixels.
         const double open = std::stod(fields[column.at("ref_open_pixels")]);
         CHECK(open > 0.0);
-        for (const char* stage :
-             {"ref_open_raw_below", "ref_open_blur_below", "ref_open_accum_below"}) {
-            const double below = std::stod(fields[column.at(stage)]);
+        // Those in open surroundings are a subset of them.
+        for (const char* stage : {"raw", "blur", "accum"}) {
+            INFO(stage);
+            const double below =
+                std::stod(fields[column.at(fmt::format("ref_open_{}_below", stage))]);
+            const double core =
+                std::stod(fields[column.at(fmt::format("ref_open_core_{}_below", stage))]);
             CHECK(below >= 0.0);
             CHECK(below <= open);
+            CHECK(core >= 0.0);
+            CHECK(core <= below);
         }
         if (fields[1] == "optimal" && taps == 4 && fields[3] == "2")
             open_blur_below[method] = std::stod(fields[column.at("ref_open_blur_below")]);
