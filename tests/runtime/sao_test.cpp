@@ -400,3 +400,28 @@ TEST_CASE("sao: the ao-raw, ao-temporal and ao-blurred debug views show the visi
 
 }  // namespace
 }  // namespace deepgi::test
+
+namespace deepgi::test {
+
+// With AO switched off the estimator must not matter: the SAO pass still
+// runs (the debug views show it), and the march's back-face pass with it.
+TEST_CASE("sao: with AO off the final image does not depend on the estimator", "[compose]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    std::vector<FloatImage> composed;
+    for (AoMethod method : {AoMethod::solid_angle, AoMethod::march}) {
+        RenderSettings settings = small_settings(160, 90);
+        settings.ao.enabled = false;
+        settings.ao.method = method;
+        Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+        renderer.render(scene.default_camera);
+        composed.push_back(renderer.read_pass_output("compose-radiance"));
+        // The estimators differ where it is switched on.
+        const FloatImage raw = renderer.read_pass_output("ao-raw");
+        CHECK(*std::min_element(raw.pixels.begin(), raw.pixels.end()) < 0.9f);
+    }
+    REQUIRE(composed[0].pixels.size() == composed[1].pixels.size());
+    CHECK(composed[0].pixels == composed[1].pixels);
+}
+
+}  // namespace deepgi::test

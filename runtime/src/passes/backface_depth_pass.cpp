@@ -22,7 +22,8 @@ public:
     std::string_view name() const override { return "backface_depth"; }
 
     bool enabled(const RenderSettings& settings) const override {
-        return settings.ao.enabled && settings.ao.method == AoMethod::march;
+        // The SAO pass runs (and binds this) whether or not compose uses AO.
+        return settings.ao.method == AoMethod::march;
     }
 
     void resize(FrameResources& frame) override {
