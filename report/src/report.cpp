@@ -188,54 +188,48 @@ FloatImage crop(const FloatImage& image, int guard, const std::vector<std::uint8
 }
 
 // The open-surface target (docs/deep-sao.md): pixels with nothing within r
-// in the truth must keep an estimate of at least 0.99.
+// in the truth (AV >= 0.9999) must keep an estimate of at least 0.99.
 bool is_open(const FloatImage& truth, std::size_t i) {
     return truth.pixels[i * std::size_t(truth.channels)] >= 0.9999f;
 }
 
-long long count_open(const FloatImage& truth, const std::vector<std::uint8_t>& mask) {
-    long long count = 0;
-    for (std::size_t i = 0; i < mask.size(); ++i) count += mask[i] && is_open(truth, i);
-    return count;
-}
-
-// Open pixels (of mask) whose estimate falls below 0.99.
-long long count_open_below(const FloatImage& estimate, const FloatImage& truth,
-                           const std::vector<std::uint8_t>& mask) {
-    long long count = 0;
-    for (std::size_t i = 0; i < mask.size(); ++i) {
-        if (mask[i] && is_open(truth, i))
-            count += estimate.pixels[i * std::size_t(estimate.channels)] < 0.99f;
-    }
-    return count;
-}
-
-// The pixels of mask that are open and whose neighbours within `reach`
-// pixels (a square) are open too: what the open-surface target counts
-// (docs/deep-sao.md, "Current figures"). Reach 1 before the blur, where the
-// truth's own Monte Carlo estimate reads 1 next to occluded pixels when an
-// occluder's reach ends inside the pixel; the blur's radius after it, which
-// rightly averages neighbours' occlusion in, as a blur of the truth would.
-std::vector<std::uint8_t> open_surroundings(const FloatImage& truth,
-                                            const std::vector<std::uint8_t>& mask, int reach) {
+// The open pixels whose neighbours within `reach` pixels (a square) are open
+// too; reach 0: every open pixel. The target counts reach 1 before the blur,
+// where the truth's own Monte Carlo estimate reads 1 next to occluded pixels
+// when an occluder's reach ends inside the pixel, and the blur's radius after
+// it, which rightly averages neighbours' occlusion in, as a blur of the truth
+// would (docs/deep-sao.md, "Current figures").
+std::vector<std::uint8_t> open_region(const FloatImage& truth, int reach) {
     const int w = truth.width, h = truth.height;
-    std::vector<std::uint8_t> result(mask.size(), 0);
+    std::vector<std::uint8_t> region(std::size_t(w) * std::size_t(h), 0);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-            if (!mask[i]) continue;
             bool open = true;
             for (int v = std::max(0, y - reach); open && v <= std::min(h - 1, y + reach); ++v) {
                 for (int u = std::max(0, x - reach); open && u <= std::min(w - 1, x + reach); ++u)
                     open = is_open(truth, std::size_t(v) * std::size_t(w) + std::size_t(u));
             }
-            result[i] = open ? 1 : 0;
+            region[std::size_t(y) * std::size_t(w) + std::size_t(x)] = open ? 1 : 0;
         }
     }
-    return result;
+    return region;
 }
-constexpr int kRawOpenReach = 1;
-constexpr int kBlurOpenReach = DEEPGI_REPORT_BLUR_RADIUS;
+
+// Pixels of mask and region, and of those, the ones whose estimate is below 0.99.
+struct OpenCount {
+    long long pixels = 0;
+    long long below = 0;
+};
+OpenCount count_open(const FloatImage& estimate, const std::vector<std::uint8_t>& mask,
+                     const std::vector<std::uint8_t>& region) {
+    OpenCount count;
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i] || !region[i]) continue;
+        ++count.pixels;
+        count.below += estimate.pixels[i * std::size_t(estimate.channels)] < 0.99f;
+    }
+    return count;
+}
 
 int nearest(const std::vector<int>& values, int target) {
     int best = values.front();
@@ -576,6 +570,12 @@ ReportResult run_report(const ReportOptions& options) {
         const RayScene rays(scene);
         const ReferenceImages truth = render_reference(rays, camera, reference);
         const std::optional<FloatImage> truth_irradiance = reference_irradiance(truth);
+        // Open pixels: all of them, and those the target counts before and
+        // after the blur. They depend on the truth alone.
+        const auto open_pixels = open_region(truth.ambient_visibility, 0);
+        const auto raw_open_region = open_region(truth.ambient_visibility, 1);
+        const auto blur_open_region =
+            open_region(truth.ambient_visibility, DEEPGI_REPORT_BLUR_RADIUS);
         log(fmt::format(
             "{}: reference, {} rays per pixel, {:.1f} s", scene_name,
             options.rays > 0 ? std::to_string(options.rays) : std::string("adaptive"),
@@ -589,6 +589,13 @@ ReportResult run_report(const ReportOptions& options) {
             RenderSettings method_settings = settings;
             method_settings.ao.method = method;
             method_settings.ao.bias = default_ao_bias(method);
+            // The AO and the radiosity gather at the row's layer count.
+            auto with_layers = [&](int layers) {
+                RenderSettings s = method_settings;
+                s.ao.layers = layers;
+                s.radiosity.layers = layers;
+                return s;
+            };
             // The first method compares the patterns; the others are curves
             // (or, for the march, one point) beside it (ReportOptions).
             const bool gathers_taps = ao_method_gathers_taps(method);
@@ -605,10 +612,7 @@ ReportResult run_report(const ReportOptions& options) {
             {
                 Renderer renderer(scene, method_settings, loader);
                 for (int layers : options.layers) {
-                    RenderSettings s = method_settings;
-                    s.ao.layers = layers;
-                    s.radiosity.layers = layers;
-                    renderer.set_settings(s);
+                    renderer.set_settings(with_layers(layers));
                     renderer.render(camera, CameraMotion::cut);
                     converged[layers] = read_frame(renderer);
                 }
@@ -622,10 +626,7 @@ ReportResult run_report(const ReportOptions& options) {
                     Renderer renderer(scene, method_settings, loader);
                     result.info.cpu_clock = renderer.timing_uses_cpu_clock();
                     for (int layers : options.layers) {
-                        RenderSettings s = method_settings;
-                        s.ao.layers = layers;
-                        s.radiosity.layers = layers;
-                        renderer.set_settings(s);
+                        renderer.set_settings(with_layers(layers));
                         // Errors from the first frame after a cut: no history in it.
                         renderer.render(camera, CameraMotion::cut);
                         const Frame frame = read_frame(renderer);
@@ -696,10 +697,6 @@ ReportResult run_report(const ReportOptions& options) {
                         std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
                             rad_ref_accum;
                         std::optional<double> open_accum, open_core_accum;
-                        const auto raw_open_mask =
-                            open_surroundings(truth.ambient_visibility, agreed, kRawOpenReach);
-                        const auto blur_open_mask =
-                            open_surroundings(truth.ambient_visibility, agreed, kBlurOpenReach);
                         for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
                             renderer.render(camera);
                             if (i >= options.warmup && i < timed_end) {
@@ -716,10 +713,9 @@ ReportResult run_report(const ReportOptions& options) {
                                 clamped_visibility(renderer.read_pass_output("ao-blurred"));
                             ref_accum =
                                 compare_images(accumulated, truth.ambient_visibility, agreed);
-                            open_accum = double(
-                                count_open_below(accumulated, truth.ambient_visibility, agreed));
-                            open_core_accum = double(count_open_below(
-                                accumulated, truth.ambient_visibility, blur_open_mask));
+                            open_accum = double(count_open(accumulated, agreed, open_pixels).below);
+                            open_core_accum =
+                                double(count_open(accumulated, agreed, blur_open_region).below);
                             if (has_output(renderer, kTemporalIrradianceOutput)) {
                                 rad_ref_temporal = against_irradiance(
                                     renderer.read_pass_output(kTemporalIrradianceOutput));
@@ -774,21 +770,16 @@ ReportResult run_report(const ReportOptions& options) {
                         add_stats("ref_temporal", ref_temporal);
                         add_stats("ref_accum", ref_accum);
                         add("ref_pixels", double(ref_blur.pixels));
-                        add("ref_open_pixels",
-                            double(count_open(truth.ambient_visibility, agreed)));
-                        add("ref_open_raw_below",
-                            double(
-                                count_open_below(frame.ao_raw, truth.ambient_visibility, agreed)));
+                        const OpenCount open_raw = count_open(frame.ao_raw, agreed, open_pixels);
+                        add("ref_open_pixels", double(open_raw.pixels));
+                        add("ref_open_raw_below", double(open_raw.below));
                         add("ref_open_blur_below",
-                            double(count_open_below(frame.ao_blurred, truth.ambient_visibility,
-                                                    agreed)));
+                            double(count_open(frame.ao_blurred, agreed, open_pixels).below));
                         add("ref_open_accum_below", open_accum);
                         add("ref_open_core_raw_below",
-                            double(count_open_below(frame.ao_raw, truth.ambient_visibility,
-                                                    raw_open_mask)));
+                            double(count_open(frame.ao_raw, agreed, raw_open_region).below));
                         add("ref_open_core_blur_below",
-                            double(count_open_below(frame.ao_blurred, truth.ambient_visibility,
-                                                    blur_open_mask)));
+                            double(count_open(frame.ao_blurred, agreed, blur_open_region).below));
                         add("ref_open_core_accum_below", open_core_accum);
                         add("rad_conv_raw_rel_mae", rad_raw.mae);
                         add("rad_conv_raw_rel_rmse", rad_raw.rmse);
