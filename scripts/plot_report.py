@@ -241,7 +241,8 @@ def plot_images(plt, directory, scenes, methods):
         if not (os.path.exists(truth_path) and estimates):
             continue
         truth = read_pfm(truth_path)
-        errors = [(m, read_pfm(path), read_pfm(path) - truth) for m, path in estimates]
+        errors = [(m, estimate, estimate - truth)
+                  for m, estimate in ((m, read_pfm(path)) for m, path in estimates)]
         # One colour scale for every method's error, so the rows compare.
         spread = np.concatenate([np.abs(e[np.isfinite(e)]) for _, _, e in errors])
         limit = max(0.05, float(np.percentile(spread, 99))) if spread.size else 0.05
