@@ -254,9 +254,10 @@ int main(int argc, char** argv) {
                                deepgi::limits::max_ao_layers))
         ->capture_default_str();
     app.add_option("--ao-method", options.ao_method,
-                   fmt::format("Deep SAO estimator: {} (solid-angle is the reference's "
-                               "integral over the seen surface, march marches its rays through "
-                               "slabs behind both layers, published is 1 - sqrt(...))",
+                   fmt::format("Deep SAO estimator: {} (march casts the reference's rays "
+                               "through the solids behind both layers; solid-angle is the "
+                               "reference's integral over the seen surface on the spiral taps, "
+                               "about 5x cheaper; published is 1 - sqrt(...))",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
     app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
@@ -264,8 +265,8 @@ int main(int argc, char** argv) {
     auto* ao_bias = app.add_option(
         "--ao-bias", options.ao.bias,
         fmt::format("Deep SAO: occluders closer than this to the tangent plane are ignored (m); "
-                    "default {} with solid-angle, {} with published",
-                    deepgi::default_ao_bias(deepgi::AoMethod::solid_angle),
+                    "default {} with march and solid-angle, {} with published",
+                    deepgi::default_ao_bias(deepgi::AoMethod::march),
                     deepgi::default_ao_bias(deepgi::AoMethod::published)));
     app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
         ->capture_default_str();

@@ -109,6 +109,7 @@ TEST_CASE("sao: deep SAO matches the CPU evaluation with other parameters and ta
     TemporaryFolder headers;
     const ShaderLoader loader = loader_with_override(headers.path());
     RenderSettings settings = small_settings(161, 91);  // odd sizes on purpose
+    settings.ao.method = AoMethod::solid_angle;         // the estimator that gathers the taps
     settings.ao.radius = 1.2f;
     settings.ao.bias = 0.05f;
     settings.ao.intensity = 2.0f;
@@ -275,6 +276,8 @@ TEST_CASE("sao: compose adds albedo times E and the environment, times the blurr
         const bool use_radiosity = (terms & 2) == 0;
         const bool use_environment = (terms & 4) == 0;
         RenderSettings settings = small_settings(160, 90);
+        // Solid angle: its AV is signed, so the clamp in compose is checked too.
+        settings.ao.method = AoMethod::solid_angle;
         settings.ao.enabled = use_ao;
         settings.radiosity.enabled = use_radiosity;
         settings.environment = use_environment;
@@ -343,7 +346,7 @@ TEST_CASE("sao: the solid-angle visibility stays signed through the temporal fil
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = small_settings(160, 90);
-    REQUIRE(settings.ao.method == AoMethod::solid_angle);
+    settings.ao.method = AoMethod::solid_angle;
     Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
     renderer.render(scene.default_camera);
     const FloatImage raw = renderer.read_pass_output("ao-raw");

@@ -121,8 +121,8 @@ inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 // (sao.frag), and every centimetre of threshold drops real occluders next to
 // creases. The march adds it to its own margin against self-hits (sao.frag).
 // The published method subtracts its bias and keeps the 1 cm it was
-// tuned with. AoSettings{} holds the solid-angle default; front ends that switch
-// method without an explicit bias take this one.
+// tuned with. AoSettings{} holds the march's; front ends that switch method
+// without an explicit bias take this one.
 constexpr float default_ao_bias(AoMethod method) {
     return method == AoMethod::published ? 0.01f : 0.0f;
 }
@@ -142,7 +142,11 @@ struct AoSettings {
     float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     int max_mip_level = 5;   // deepest depth-pyramid level built and read
-    AoMethod method = AoMethod::solid_angle;
+    // The march is the one estimator that meets the accuracy targets against
+    // the ray-traced reference on every scene; solid-angle is the fast spiral
+    // gather, about 5x cheaper on llvmpipe (docs/deep-sao.md, "Choosing an
+    // estimator").
+    AoMethod method = AoMethod::march;
     // March only: the scene is taken as solid this deep (m) behind a stored
     // surface with no back face behind it (an open mesh: a floor or wall
     // plane); behind any other the solid ends at the back face (the

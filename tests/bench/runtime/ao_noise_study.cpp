@@ -97,6 +97,8 @@ int main(int argc, char** argv) {
         settings.width = std::stoi(match[1].str());
         settings.height = std::stoi(match[2].str());
         settings.shadow_map_size = 256;
+        // The spiral gather: the march casts rays of its own, whatever the pattern.
+        settings.ao.method = deepgi::AoMethod::solid_angle;
         const deepgi::Scene scene = deepgi::make_builtin_scene("cornell");
 
         deepgi::HeadlessContext context;
@@ -160,7 +162,7 @@ int main(int argc, char** argv) {
         fmt::print(
             "\ncornell {}x{}, floor x in [{}, {}] m, z in [{}, {}] m ({} pixels), {} rotations per "
             "pattern, "
-            "default AO settings\n",
+            "default AO settings, solid-angle estimator\n",
             settings.width, settings.height, x_range[0], x_range[1], z_range[0], z_range[1],
             region_size, rotations);
         return 0;

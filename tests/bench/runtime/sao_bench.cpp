@@ -3,8 +3,9 @@
 // count runs the production sao.frag with a header the codegen library writes
 // for (N, optimal tau). On llvmpipe the renderer times each pass with a CPU
 // clock around glFinish; on a GPU with timer queries. Medians of --frames
-// frames after --warmup, all in one run. --ao-method march times the march,
-// whose rays and steps (shared_enums.h) do not follow the tap count.
+// frames after --warmup, all in one run. It times the solid-angle estimator
+// unless told otherwise: --ao-method march times the march, whose rays and
+// steps (shared_enums.h) do not follow the tap count.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/renderer.hpp"
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
     std::vector<int> tap_counts = {4, 8, 11, 16, 32, 64};
     int warmup = 2;
     int frames = 9;
-    std::string method_name{deepgi::to_string(deepgi::AoSettings{}.method)};
+    std::string method_name{deepgi::to_string(deepgi::AoMethod::solid_angle)};
     CLI::App app{"sao_bench: deep SAO milliseconds against tap count and layers"};
     app.add_option("--size", size, "WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--scene", scene_name, "Built-in scene or glTF file")->capture_default_str();
