@@ -5,7 +5,12 @@
 // test keeps the nearest of them. For closed meshes seen from outside that is
 // the far side of the object the layer shows. The march reads it as the
 // depth of that object; 0 (nothing kept) leaves it to the fixed thickness.
+// Alpha-masked batches are drawn with ALPHA_MASK defined: a masked-out back
+// face is no surface, as it is none in the G-buffer.
 #include "shared_constants.h"
+#if defined(ALPHA_MASK)
+#include "alpha_mask.glsl"
+#endif
 
 layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;  // reversed Z
 layout(location = DEEPGI_UNIFORM_BACKFACE_LAYER) uniform int layer;
@@ -15,4 +20,7 @@ void main() {
   // Reversed Z: a smaller value is further away. No surface stored, or a back
   // face in front of the stored one (inside an open mesh): nothing to keep.
   if (stored <= 0.0 || gl_FragCoord.z > stored) discard;
+#if defined(ALPHA_MASK)
+  if (masked_out()) discard;
+#endif
 }

@@ -406,6 +406,63 @@ TEST_CASE("sao: the ao-raw, ao-temporal and ao-blurred debug views show the visi
 
 namespace deepgi::test {
 
+// A glTF alpha mask makes a hole in every layer, so a masked-out mesh must
+// end no solid either. The oracle is the same scene without that mesh: a box
+// hidden behind an open screen, whose far side would otherwise be the back
+// face where the screen's solid ends.
+TEST_CASE("sao: the march's solids honour alpha masks as the G-buffer does", "[reference]") {
+    HeadlessContext context;
+    enum class Box { none, opaque, masked_kept, masked_out };
+    const auto make_scene = [](Box box) {
+        Scene scene;
+        scene.name = "test-masked-box";
+        SceneBuilder builder;
+        const int white = builder.add_material({0.8f, 0.8f, 0.8f});
+        builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0},
+                         white);
+        builder.add_quad({-1, -1, -3}, {1, -1, -3}, {1, 0.5f, -3}, {-1, 0.5f, -3}, {0, 0, 1},
+                         white);
+        const int box_material = builder.add_material({0.8f, 0.8f, 0.8f});
+        if (box != Box::none) builder.add_box({0, -0.5f, -3.4f}, {0.3f, 0.3f, 0.3f}, box_material);
+        builder.finish(scene);
+        Material& material = scene.materials[std::size_t(box_material)];
+        if (box == Box::masked_kept || box == Box::masked_out) material.alpha_cutoff = 0.5f;
+        if (box == Box::masked_out) material.base_colour.a = 0.25f;
+        scene.default_camera = camera_at_origin();
+        scene.default_camera.pitch = glm::radians(-10.0f);
+        scene.camera_path.keys = {scene.default_camera};
+        return scene;
+    };
+    RenderSettings settings = small_settings(160, 90);
+    settings.ao.method = AoMethod::march;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const auto outputs = [&](Box box) {
+        const Scene scene = make_scene(box);
+        Renderer renderer(scene, settings, loader);
+        renderer.render(scene.default_camera);
+        return std::vector<FloatImage>{renderer.read_pass_output("backface-depth-layer0"),
+                                       renderer.read_pass_output("backface-depth-layer1"),
+                                       renderer.read_pass_output("ao-raw")};
+    };
+    const auto none = outputs(Box::none);
+    const auto opaque = outputs(Box::opaque);
+    // The box is in view of the test: its far side ends the screen's solid.
+    int deeper = 0;
+    for (std::size_t i = 0; i < none[0].pixels.size(); ++i)
+        deeper += opaque[0].pixels[i] > none[0].pixels[i] + 0.5f;
+    INFO(deeper << " pixels where the opaque box's far side ends the screen's solid");
+    CHECK(deeper > 100);
+    // A masked batch that passes the alpha test draws the same depths as an
+    // opaque one; one that fails it draws nothing at all.
+    const auto kept = outputs(Box::masked_kept);
+    const auto masked_out = outputs(Box::masked_out);
+    for (std::size_t k = 0; k < none.size(); ++k) {
+        INFO("output " << k << " (back-face depth of layers 0 and 1, raw AV)");
+        CHECK(kept[k].pixels == opaque[k].pixels);
+        CHECK(masked_out[k].pixels == none[k].pixels);
+    }
+}
+
 // With AO switched off the estimator must not matter: the SAO pass still
 // runs (the debug views show it), and the march's back-face pass with it.
 TEST_CASE("sao: with AO off the final image does not depend on the estimator", "[compose]") {

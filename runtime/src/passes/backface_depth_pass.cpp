@@ -17,7 +17,10 @@ class BackfaceDepthPass final : public Pass {
 public:
     explicit BackfaceDepthPass(const ShaderLoader& loader)
         : program_(loader.build_program({{GL_VERTEX_SHADER, "backface_depth.vert"},
-                                         {GL_FRAGMENT_SHADER, "backface_depth.frag"}})) {}
+                                         {GL_FRAGMENT_SHADER, "backface_depth.frag"}})),
+          masked_program_(loader.build_program({{GL_VERTEX_SHADER, "backface_depth.vert"},
+                                                {GL_FRAGMENT_SHADER, "backface_depth.frag"}},
+                                               "#define ALPHA_MASK 1\n")) {}
 
     std::string_view name() const override { return "backface_depth"; }
 
@@ -49,15 +52,15 @@ public:
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT);
-        glUseProgram(program_.get());
         glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
         for (int layer = 0; layer < frame.settings->ao.layers; ++layer) {
             const GLuint framebuffer = framebuffers_[std::size_t(layer)].get();
             const float nothing_hit = 0.0f;  // reversed Z: 0 is infinitely far
             glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &nothing_hit);
             glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-            glProgramUniform1i(program_.get(), DEEPGI_UNIFORM_BACKFACE_LAYER, layer);
-            draw_scene(*frame.scene_gpu, 0);  // no material: depth alone
+            for (GLuint program : {program_.get(), masked_program_.get()})
+                glProgramUniform1i(program, DEEPGI_UNIFORM_BACKFACE_LAYER, layer);
+            draw_scene_depth(*frame.scene_gpu, program_.get(), masked_program_.get());
         }
         glCullFace(GL_BACK);
         frame.publish("backface.depth", depth_.get());
@@ -78,7 +81,8 @@ public:
 
 private:
     gl::Program program_;
-    gl::Texture depth_;  // DEPTH_COMPONENT32F array, near / z (reversed, infinite)
+    gl::Program masked_program_;  // ALPHA_MASK: for alpha-masked batches
+    gl::Texture depth_;           // DEPTH_COMPONENT32F array, near / z (reversed, infinite)
     std::array<gl::Framebuffer, DEEPGI_LAYER_COUNT> framebuffers_;
     int width_ = 0;
     int height_ = 0;

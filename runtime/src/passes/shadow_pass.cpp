@@ -139,41 +139,11 @@ private:
         }
     }
 
-    // Opaque batches write depth only; alpha-masked ones go through the
-    // alpha test, which costs a fragment shader and a texture read, so only
-    // they pay for it.
     void draw_casters(const SceneGpu& scene, const glm::mat4& light_view_projection) {
-        const GLuint programs[] = {program_.get(), masked_program_.get()};
-        for (GLuint program : programs)
+        for (GLuint program : {program_.get(), masked_program_.get()})
             glProgramUniformMatrix4fv(program, DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION, 1, GL_FALSE,
                                       &light_view_projection[0][0]);
-        glBindVertexArray(scene.vertex_array.get());
-        glUseProgram(program_.get());
-        for (const auto& batch : scene.batches)
-            if (!is_masked(scene, batch)) draw_batch(batch);
-        const GLuint masked = masked_program_.get();
-        glUseProgram(masked);
-        for (const auto& batch : scene.batches) {
-            if (!is_masked(scene, batch)) continue;
-            const std::size_t m = std::size_t(batch.material);
-            const Material& material = scene.materials[m];
-            glProgramUniform4fv(masked, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
-                                &material.base_colour.x);
-            glProgramUniform1f(masked, DEEPGI_UNIFORM_ALPHA_CUTOFF, material.alpha_cutoff);
-            const bool textured = material.base_colour_texture >= 0;
-            glProgramUniform1i(masked, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE, textured ? 1 : 0);
-            if (textured) {
-                glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
-                                  scene.textures[std::size_t(material.base_colour_texture)].get());
-                glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
-            }
-            draw_batch(batch);
-        }
-        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
-    }
-
-    static bool is_masked(const SceneGpu& scene, const DrawBatch& batch) {
-        return scene.materials[std::size_t(batch.material)].alpha_cutoff >= 0.0f;
+        draw_scene_depth(scene, program_.get(), masked_program_.get());
     }
 
     gl::Program program_;

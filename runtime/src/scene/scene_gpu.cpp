@@ -108,4 +108,33 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
     }
 }
 
+void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program) {
+    const auto is_masked = [&](const DrawBatch& batch) {
+        return scene.materials[std::size_t(batch.material)].alpha_cutoff >= 0.0f;
+    };
+    glBindVertexArray(scene.vertex_array.get());
+    glUseProgram(opaque_program);
+    for (const auto& batch : scene.batches)
+        if (!is_masked(batch)) draw_batch(batch);
+    glUseProgram(masked_program);
+    for (const auto& batch : scene.batches) {
+        if (!is_masked(batch)) continue;
+        const std::size_t m = std::size_t(batch.material);
+        const Material& material = scene.materials[m];
+        glProgramUniform4fv(masked_program, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
+                            &material.base_colour.x);
+        glProgramUniform1f(masked_program, DEEPGI_UNIFORM_ALPHA_CUTOFF, material.alpha_cutoff);
+        const bool textured = material.base_colour_texture >= 0;
+        glProgramUniform1i(masked_program, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE,
+                           textured ? 1 : 0);
+        if (textured) {
+            glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
+                              scene.textures[std::size_t(material.base_colour_texture)].get());
+            glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
+        }
+        draw_batch(batch);
+    }
+    glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
+}
+
 }  // namespace deepgi

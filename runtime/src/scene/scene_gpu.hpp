@@ -22,6 +22,12 @@ SceneGpu upload_scene(const Scene& scene);
 // Draws every batch; `per_material` sets material uniforms first when non-null.
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials);
 
+// Depth-only drawing that honours glTF alpha masks: opaque batches with
+// `opaque_program`, then alpha-masked ones with `masked_program`, whose
+// fragment shader runs the alpha test (alpha_mask.glsl) on the material
+// uniforms set here. Only masked batches pay for the test's texture read.
+void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program);
+
 // Draws one batch's triangles; the caller binds the vertex array and sets uniforms.
 void draw_batch(const DrawBatch& batch);
 
