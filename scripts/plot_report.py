@@ -296,18 +296,19 @@ def stability_section(directory, add):
     add("## Numerical stability\n")
     if cases is not None:
         passing = sum(1 for c in cases if c["pass"] == "1")
-        add("The hard cases of `tests/runtime/stability_test.cpp`, rendered by the report with "
-            f"the shipped tap pattern: **{passing} of {len(cases)} checks pass**. "
-            "Worst value per kind of case and measured quantity (every row is in "
-            "`stability.csv`):\n")
-        add("| case | quantity | checks | pass | worst | bound |")
-        add("|:--|:--|--:|--:|--:|:--|")
+        add("The hard cases of `tests/runtime/stability_test.cpp`, rendered by the report once "
+            "per AO estimator (the tap-gathering ones with the shipped tap pattern): "
+            f"**{passing} of {len(cases)} checks pass**. Worst value per estimator, kind of case "
+            "and measured quantity (every row is in `stability.csv`):\n")
+        add("| estimator | case | quantity | checks | pass | worst | bound |")
+        add("|:--|:--|:--|--:|--:|--:|:--|")
         groups = {}
         for c in cases:
             family = next((title for prefix, title in STABILITY_FAMILIES
                            if c["case"].startswith(prefix)), c["case"])
-            groups.setdefault((family, c["quantity"], c["test"]), []).append(c)
-        for (family, quantity, test), members in groups.items():
+            key = (c["ao_method"], family, c["quantity"], c["test"])
+            groups.setdefault(key, []).append(c)
+        for (method, family, quantity, test), members in groups.items():
             values = [float(c["value"]) for c in members]
             if any(math.isnan(v) for v in values):
                 worst = float("nan")
@@ -316,14 +317,16 @@ def stability_section(directory, add):
             bounds = sorted({float(c["tolerance"]) for c in members})
             bound = " or ".join(f"{test} {b:g}" for b in bounds)
             good = sum(1 for c in members if c["pass"] == "1")
-            add(f"| {family} | {quantity.replace('|', '&#124;')} | {len(members)} | {good} | "
+            add(f"| {METHOD_LABELS.get(method, method)} | {family} | "
+                f"{quantity.replace('|', '&#124;')} | {len(members)} | {good} | "
                 f"{worst:.4g} | {bound} |")
         add("")
         failures = [c for c in cases if c["pass"] != "1"]
         if failures:
             add("Failing checks:\n")
             for c in failures:
-                add(f"- {c['case']}: {c['quantity']} = {c['value']} (must be {c['test']} "
+                add(f"- {c['case']} ({c['ao_method']}): {c['quantity']} = {c['value']} "
+                    f"(must be {c['test']} "
                     f"{float(c['tolerance']):g})")
             add("")
         else:

@@ -408,11 +408,11 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
     for (std::size_t r = 0; r < stability.size(); ++r) {
         const StabilityRow& row = stability[r];
         text += fmt::format(
-            "{{\"case\":{},\"quantity\":{},\"value\":{},\"test\":{},\"tolerance\":{},"
-            "\"pass\":{}}}{}",
-            json_string(row.case_name), json_string(row.quantity), json_number(row.value),
-            json_string(row.test), json_number(row.tolerance), row.pass ? "true" : "false",
-            r + 1 < stability.size() ? ",\n" : "\n");
+            "{{\"ao_method\":{},\"case\":{},\"quantity\":{},\"value\":{},\"test\":{},"
+            "\"tolerance\":{},\"pass\":{}}}{}",
+            json_string(row.ao_method), json_string(row.case_name), json_string(row.quantity),
+            json_number(row.value), json_string(row.test), json_number(row.tolerance),
+            row.pass ? "true" : "false", r + 1 < stability.size() ? ",\n" : "\n");
     }
     // Only the n where the choices differ; float_vs_exact.csv has every n.
     int differing = 0, larger_k = 0;
@@ -804,7 +804,8 @@ ReportResult run_report(const ReportOptions& options) {
 
     if (options.stability) {
         const auto stability_start = std::chrono::steady_clock::now();
-        result.stability = run_stability_cases(hard_cases::Parameters{}, options.log);
+        result.stability =
+            run_stability_cases(hard_cases::Parameters{}, options.ao_methods, options.log);
         const auto passing = std::count_if(result.stability.begin(), result.stability.end(),
                                            [](const StabilityRow& row) { return row.pass; });
         log(fmt::format(

@@ -79,6 +79,9 @@ class Table {
 public:
     explicit Table(const std::function<void(const std::string&)>& log) : log_(log) {}
 
+    // The estimator the rows that follow were rendered with.
+    void set_method(AoMethod method) { method_ = std::string(to_string(method)); }
+
     void at_most(const std::string& name, const std::string& quantity, double value,
                  double tolerance) {
         add(name, quantity, value, "<=", tolerance, value <= tolerance);
@@ -93,26 +96,22 @@ private:
     void add(const std::string& name, const std::string& quantity, double value, const char* test,
              double tolerance, bool pass) {
         // NaN compares false either way, so it fails.
-        rows_.push_back({name, quantity, value, test, tolerance, pass});
+        rows_.push_back({method_, name, quantity, value, test, tolerance, pass});
         if (log_)
-            log_(fmt::format("stability: {}: {} = {} ({} {}) {}", name, quantity, number(value),
-                             test, number(tolerance), pass ? "pass" : "FAIL"));
+            log_(fmt::format("stability ({}): {}: {} = {} ({} {}) {}", method_, name, quantity,
+                             number(value), test, number(tolerance), pass ? "pass" : "FAIL"));
     }
 
     const std::function<void(const std::string&)>& log_;
+    std::string method_;
     std::vector<StabilityRow> rows_;
 };
 
-}  // namespace
-
-std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& cases,
-                                              const std::function<void(const std::string&)>& log) {
+// Every case with one estimator: `base` holds it.
+void run_cases(const hard_cases::Parameters& cases, const RenderSettings& base,
+               const ShaderLoader& loader, Table& table) {
     namespace hc = hard_cases;
-    // The shipped tap pattern: the cases are about the build, not a pattern.
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const RenderSettings base = hc::base_settings(cases.width, cases.height);
     const int guard = frame_layout(base).guard;
-    Table table(log);
 
     // The same scene at very different scales, every length scaled along.
     for (const std::string& name : cases.scaled_scenes) {
@@ -201,7 +200,10 @@ std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& case
     for (auto [width, height] : cases.tiny_sizes) {
         for (const std::string& name : cases.tiny_scenes) {
             const Scene scene = make_builtin_scene(name);
-            Renderer renderer(scene, hc::base_settings(width, height), loader);
+            RenderSettings settings = base;
+            settings.width = width;
+            settings.height = height;
+            Renderer renderer(scene, settings, loader);
             renderer.render(scene.default_camera);
             long long invalid = 0;
             for (const std::string& output : renderer.pass_output_names())
@@ -210,6 +212,23 @@ std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& case
             table.at_most(fmt::format("{}x{} image of {}", width, height, name),
                           "non-finite pixels in any output, or AV above 1", double(invalid), 0.0);
         }
+    }
+}
+
+}  // namespace
+
+std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& cases,
+                                              std::span<const AoMethod> methods,
+                                              const std::function<void(const std::string&)>& log) {
+    // The shipped tap pattern: the cases are about the build, not a pattern.
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    Table table(log);
+    for (AoMethod method : methods) {
+        RenderSettings base = hard_cases::base_settings(cases.width, cases.height);
+        base.ao.method = method;
+        base.ao.bias = default_ao_bias(method);
+        table.set_method(method);
+        run_cases(cases, base, loader, table);
     }
     return table.take();
 }
@@ -225,11 +244,11 @@ std::string csv_field(std::string_view text) {
 }
 
 std::string format_stability_csv(const std::vector<StabilityRow>& rows) {
-    std::string text = "case,quantity,value,test,tolerance,pass\n";
+    std::string text = "ao_method,case,quantity,value,test,tolerance,pass\n";
     for (const StabilityRow& row : rows) {
-        text +=
-            fmt::format("{},{},{},{},{},{}\n", csv_field(row.case_name), csv_field(row.quantity),
-                        row.value, row.test, row.tolerance, row.pass ? 1 : 0);
+        text += fmt::format("{},{},{},{},{},{},{}\n", row.ao_method, csv_field(row.case_name),
+                            csv_field(row.quantity), row.value, row.test, row.tolerance,
+                            row.pass ? 1 : 0);
     }
     return text;
 }

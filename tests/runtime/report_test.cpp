@@ -262,7 +262,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         ++json_rows;
     CHECK(json_rows == 10);
     CHECK(count_of(json, "\"device\":") == 10);
-    CHECK(count_of(json, "\"ao_method\":\"march\"") == 2);
+    // Two rows of the march, and its half of the stability rows (checked below).
+    const std::string rows_json = json.substr(0, json.find("\"stability\":"));
+    CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 2);
     CHECK(fs::exists(output / "discrepancy.csv"));
     // The images of each method, counted again from the files: the open
     // pixels below 0.99 agree with the row the images came from.
@@ -279,19 +281,25 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         CHECK(double(below) == open_blur_below.at(method));
     }
 
-    // The numerical hard cases: one row per check, all passing. The expected
-    // count follows from the documented case set.
+    // The numerical hard cases: one row per check, all passing.
+    // The expected count follows from the documented case set, once per
+    // estimator of the run.
     const deepgi::hard_cases::Parameters cases;
     const std::size_t layer_counts = cases.layers.size();
-    const std::size_t expected_stability =
+    const std::size_t per_method =
         cases.scaled_scenes.size() * cases.scales.size() * 2     // raw and blurred
         + cases.far_pitches.size() * cases.far_radii.size() * 2  // lowest AV, floor share
         + cases.grazing_pitches.size() * layer_counts            // lowest AV
         + 3 * (layer_counts * cases.guard_radii.size() + 1)      // three edges, + depth ratio
         + cases.tiny_sizes.size() * cases.tiny_scenes.size();    // invalid pixels
+    const std::size_t expected_stability = per_method * options.ao_methods.size();
     const auto stability = read_csv(output / "stability.csv");
     CHECK(stability.size() == expected_stability);
     CHECK(result.stability.size() == expected_stability);
+    std::map<std::string, std::size_t> rows_per_method;
+    for (const auto& row : stability) ++rows_per_method[row.at("ao_method")];
+    for (deepgi::AoMethod method : options.ao_methods)
+        CHECK(rows_per_method[std::string(deepgi::to_string(method))] == per_method);
     std::map<std::string, int> families;
     for (const auto& row : stability) {
         INFO(row.at("case") << ": " << row.at("quantity") << " = " << row.at("value"));
@@ -312,6 +320,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (const auto& row : stability)
         if (row.at("case").rfind("scale ", 0) == 0) CHECK(std::stod(row.at("tolerance")) <= 1e-3);
     CHECK(count_of(json, "\"case\":") == expected_stability);
+    CHECK(count_of(json, "\"ao_method\":\"march\",\"case\":") == per_method);
 
     // Exact against double search: one row per n, checked against the optimizer.
     const auto choices = read_csv(output / "float_vs_exact.csv");

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -112,6 +113,7 @@ std::string csv_field(std::string_view text);
 // of one case, with the bound it must keep.
 
 struct StabilityRow {
+    std::string ao_method;  // the estimator rendered, as --ao-method names it
     std::string case_name;  // e.g. "scale ref-crease x0.001"
     std::string quantity;   // what value measures
     double value = 0.0;     // NaN when the case produced non-finite output
@@ -120,13 +122,15 @@ struct StabilityRow {
     bool pass = false;  // false for a NaN value
 };
 
-// Renders every case of `cases` with the build's shaders and tap headers and
-// measures them as tests/runtime/stability_test.cpp checks them. Needs a
-// current GL context; `log` (may be empty) gets one line per case.
+// Renders every case of `cases` with the build's shaders and tap headers, once
+// per AO estimator in `methods`, and measures them as
+// tests/runtime/stability_test.cpp checks them. Needs a current GL context;
+// `log` (may be empty) gets one line per case.
 std::vector<StabilityRow> run_stability_cases(const hard_cases::Parameters& cases,
+                                              std::span<const AoMethod> methods,
                                               const std::function<void(const std::string&)>& log);
 
-// case,quantity,value,test,tolerance,pass
+// ao_method,case,quantity,value,test,tolerance,pass
 std::string format_stability_csv(const std::vector<StabilityRow>& rows);
 
 // n,exact_tau,exact_K,float_tau,float_tau_exact_K,denominator,differs,exact_tie:
