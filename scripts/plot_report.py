@@ -329,9 +329,13 @@ def stability_section(directory, add):
                     f"(must be {c['test']} "
                     f"{float(c['tolerance']):g})")
             add("")
-        else:
-            add("Scaling by a power of two changes no raw AV pixel at all (bound 0); by 1e-3 and "
-                "1e3 the largest change is the worst value above.\n")
+        exact = [METHOD_LABELS.get(m, m) for m in dict.fromkeys(c["ao_method"] for c in cases)
+                 if all(c["pass"] == "1" for c in cases
+                        if c["ao_method"] == m and c["case"].startswith("scale"))]
+        if exact:
+            add(f"With the {' and the '.join(exact)}, scaling by a power of two changes no raw AV pixel "
+                "at all (bound 0); by 1e-3 and 1e3 the largest change is the worst value "
+                "above.\n")
     if choices is not None and choices:
         max_n = max(int(c["n"]) for c in choices)
         differing = [c for c in choices if c["differs"] == "1"]
