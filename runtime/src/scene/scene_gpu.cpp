@@ -70,24 +70,33 @@ void draw_batch(const DrawBatch& batch) {
         reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) * sizeof(std::uint32_t)));
 }
 
+namespace {
+
+// Material m's base colour as gbuffer.frag and alpha_mask.glsl read it: the
+// factor, whether there is a texture, and the texture with its sampler.
+void set_base_colour(const SceneGpu& scene, std::size_t m, GLuint program) {
+    const Material& material = scene.materials[m];
+    glProgramUniform4fv(program, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1, &material.base_colour.x);
+    const bool textured = material.base_colour_texture >= 0;
+    glProgramUniform1i(program, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE, textured ? 1 : 0);
+    if (textured) {
+        glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
+                          scene.textures[std::size_t(material.base_colour_texture)].get());
+        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
+    }
+}
+
+}  // namespace
+
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
     glBindVertexArray(scene.vertex_array.get());
     for (const auto& batch : scene.batches) {
         if (program_for_materials != 0) {
             const std::size_t m = std::size_t(batch.material);
             const Material& material = scene.materials[m];
-            glProgramUniform4fv(program_for_materials, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
-                                &material.base_colour.x);
+            set_base_colour(scene, m, program_for_materials);
             glProgramUniform3fv(program_for_materials, DEEPGI_UNIFORM_EMISSIVE_FACTOR, 1,
                                 &material.emissive.x);
-            const bool textured = material.base_colour_texture >= 0;
-            glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE,
-                               textured ? 1 : 0);
-            if (textured) {
-                glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
-                                  scene.textures[std::size_t(material.base_colour_texture)].get());
-                glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
-            }
             const bool emissive_textured = material.emissive_texture >= 0;
             glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE,
                                emissive_textured ? 1 : 0);
@@ -120,18 +129,9 @@ void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint maske
     for (const auto& batch : scene.batches) {
         if (!is_masked(batch)) continue;
         const std::size_t m = std::size_t(batch.material);
-        const Material& material = scene.materials[m];
-        glProgramUniform4fv(masked_program, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1,
-                            &material.base_colour.x);
-        glProgramUniform1f(masked_program, DEEPGI_UNIFORM_ALPHA_CUTOFF, material.alpha_cutoff);
-        const bool textured = material.base_colour_texture >= 0;
-        glProgramUniform1i(masked_program, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE,
-                           textured ? 1 : 0);
-        if (textured) {
-            glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
-                              scene.textures[std::size_t(material.base_colour_texture)].get());
-            glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
-        }
+        set_base_colour(scene, m, masked_program);
+        glProgramUniform1f(masked_program, DEEPGI_UNIFORM_ALPHA_CUTOFF,
+                           scene.materials[m].alpha_cutoff);
         draw_batch(batch);
     }
     glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
