@@ -375,12 +375,12 @@ def estimator_section(rows, info, add):
     top = layers[-1]
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
 
+    # The rows at the image configuration, by method, scene and layer count.
+    index = {(r["ao_method"], r["scene"], r["layers"]): r for r in rows
+             if r["pattern"] == pattern and r["taps"] == n}
+
     def find(method, scene, layer=top):
-        for r in rows:
-            if (r["ao_method"], r["scene"], r["pattern"], r["taps"], r["layers"]) == \
-                    (method, scene, pattern, n, layer):
-                return r
-        return None
+        return index.get((method, scene, layer))
 
     def count(value):
         return "-" if value is None else f"{value:.0f}"
@@ -413,7 +413,7 @@ def estimator_section(rows, info, add):
     add("")
 
     first = methods[0]
-    base_ms = mean([find(first, scene)["sao_ms"] for scene in scenes if find(first, scene)])
+    base_ms = mean([r["sao_ms"] for r in (find(first, scene) for scene in scenes) if r])
     for method in methods:
         found = [(scene, find(method, scene)) for scene in scenes]
         found = [(scene, r) for scene, r in found if r is not None]

@@ -83,7 +83,7 @@
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
 #define DEEPGI_UNIFORM_RADIOSITY_METHOD 37      // int: DEEPGI_RADIOSITY_METHOD_*
-#define DEEPGI_UNIFORM_SAO_THICKNESS 38         // float: slab behind each stored surface (m), march only
+#define DEEPGI_UNIFORM_SAO_THICKNESS 38         // float: solid behind a surface with no back face (m), march only
 #define DEEPGI_UNIFORM_BACKFACE_LAYER 39        // int: the G-buffer layer the back faces must lie behind
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them

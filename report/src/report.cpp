@@ -582,6 +582,11 @@ ReportResult run_report(const ReportOptions& options) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start)
                 .count()));
 
+        // The converged screen-space result, one per layer count: AO and
+        // radiosity at many taps. Radiosity does not depend on the AO method,
+        // so a method that gathers no AO taps (it has no converged AO: it would
+        // equal itself) keeps the previous method's frames for its radiosity.
+        std::map<int, Frame> converged;
         for (std::size_t method_index = 0; method_index < options.ao_methods.size();
              ++method_index) {
             const AoMethod method = options.ao_methods[method_index];
@@ -604,12 +609,8 @@ ReportResult run_report(const ReportOptions& options) {
             const std::vector<int> tap_counts =
                 gathers_taps ? options.taps : std::vector<int>{image_taps};
 
-            // The converged screen-space result, one per layer count. A
-            // method that gathers no taps has no converged AO (it would
-            // equal itself); its rows still compare radiosity against it.
-            std::map<int, Frame> converged;
-            write_headers(headers.path(), "optimal", options.converged_taps);
-            {
+            if (gathers_taps || converged.empty()) {
+                write_headers(headers.path(), "optimal", options.converged_taps);
                 Renderer renderer(scene, method_settings, loader);
                 for (int layers : options.layers) {
                     renderer.set_settings(with_layers(layers));
