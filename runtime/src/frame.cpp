@@ -123,6 +123,7 @@ void resize_passes(RendererState& state) {
     frame.layout = frame_layout(state.settings);
     frame.empty_vertex_array = state.empty_vertex_array.get();
     frame.allocate_display(state.settings.width, state.settings.height);
+    check_pass_declarations(state.passes, state.settings);
     for (auto& pass : state.passes) {
         pass->resize(frame);
         throw_gl_errors(state, fmt::format("resizing pass '{}'", pass->name()));
@@ -217,10 +218,18 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 
     state.timer.begin_frame();
+    frame.begin_frame_textures();
     for (auto& pass : state.passes) {
         if (!pass->enabled(state.settings)) continue;
         ScopedPass timed(state.timer, std::string(pass->name()));
+        PassDeclaration declaration = pass->declaration(state.settings);
+        // check_pass_declarations() has made sure every read is written.
+        for (const PassRead& read : declaration.reads)
+            if (read.binding != PassRead::unbound)
+                glBindTextureUnit(read.binding, frame.texture(read.texture));
+        frame.begin_pass(pass->name(), std::move(declaration.writes));
         pass->run(frame);
+        frame.end_pass();
         throw_gl_errors(state, fmt::format("pass '{}'", pass->name()));
     }
     state.timer.end_frame();
@@ -291,6 +300,9 @@ void Renderer::set_settings(const RenderSettings& settings) {
     // history of one would take cycles to fade from the other.
     const bool method_changed = settings.radiosity.method != state.settings.radiosity.method;
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
+    // Which passes run, and what they read, can change with any setting
+    // (the AO method decides whether the back faces are needed).
+    check_pass_declarations(state.passes, settings);
     state.settings = settings;
     if (reallocate) resize_passes(state);
     if (resized) {

@@ -54,9 +54,19 @@ public:
     GLuint empty_vertex_array = 0;
 
     // ---- named textures of this frame ----
+    // Throws GraphicsError when the running pass did not declare `name` as a
+    // write (the frame sets the running pass's writes around run()).
     void publish(const std::string& name, GLuint texture);
     // Throws GraphicsError naming the texture when no earlier pass published it.
     GLuint texture(std::string_view name) const;
+    // The frame's bookkeeping around one pass's run(): forget what the last
+    // frame published before the first pass, and check what a pass published
+    // against what it declared.
+    void begin_frame_textures();
+    void begin_pass(std::string_view pass, std::vector<std::string> writes);
+    // Throws GraphicsError naming the pass and the first declared write it
+    // did not publish.
+    void end_pass();
     // Named integers a pass computes for later ones (e.g. the pyramid's depth).
     void publish_int(const std::string& name, int value);
     int integer(std::string_view name) const;
@@ -83,6 +93,9 @@ public:
 
 private:
     std::map<std::string, GLuint, std::less<>> textures_;
+    std::string running_pass_;                  // empty outside a pass's run()
+    std::vector<std::string> declared_writes_;  // the running pass's
+    std::vector<std::string> published_;        // what it has published so far
     std::map<std::string, int, std::less<>> integers_;
     std::map<std::string, HistoryPair, std::less<>> history_;
     bool history_valid_ = false;

@@ -1,8 +1,11 @@
 #pragma once
 // The pass interface. A pass builds its programs once (constructor), owns its
 // render targets ((re)allocated by resize() without recompiling anything),
-// runs against FrameResources, and lists the outputs --dump can write. The
-// frame (frame.cpp) only holds the list of passes in the order they run.
+// declares which of the frame's named textures it reads and writes, runs
+// against FrameResources, and lists the outputs --dump can write. The frame
+// (frame.cpp) holds the list of passes in the order they run, checks the
+// declarations before the first frame and binds every declared read before
+// the pass runs.
 #include "deepgi/gl_objects.hpp"
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
@@ -39,6 +42,25 @@ struct PassOutput {
     GLuint mask_depth = 0;  // for octahedral_normal: depth array of the same layer
 };
 
+// One named texture of the frame that a pass samples: the frame binds it to
+// texture unit `binding` (the sampler's layout(binding) in the pass's shader)
+// before run(). Textures the pass owns itself (its history, intermediates)
+// are not reads: the pass binds those.
+struct PassRead {
+    // A read the pass uses by name only (a copy, say): checked, not bound.
+    static constexpr GLuint unbound = ~GLuint(0);
+    GLuint binding = unbound;
+    std::string_view texture;  // the name an earlier pass writes, e.g. "gbuffer.normal"
+};
+
+// What a pass reads and writes under given settings. Every read must be
+// written by an enabled pass earlier in the list; every write must be
+// published during run(), and nothing else may be.
+struct PassDeclaration {
+    std::vector<PassRead> reads;
+    std::vector<std::string> writes;  // names published with frame.publish()
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -48,6 +70,8 @@ public:
     virtual void resize(FrameResources& frame) = 0;
     // Whether the pass runs (and lists outputs) with these settings.
     virtual bool enabled(const RenderSettings&) const { return true; }
+    // The frame's textures it reads and writes with these settings.
+    virtual PassDeclaration declaration(const RenderSettings&) const = 0;
     virtual void run(FrameResources& frame) = 0;
     virtual std::vector<PassOutput> outputs(const FrameResources&) const { return {}; }
 };
@@ -62,6 +86,12 @@ FloatImage read_pass_output(const PassOutput& output, float near_plane);
 
 // ---- helpers shared by the passes ----
 
+// Checks the declarations of the enabled passes in list order; throws
+// GraphicsError with one line naming the pass and the texture when a pass
+// reads what no earlier enabled pass writes, or two passes write one name.
+void check_pass_declarations(const std::vector<std::unique_ptr<Pass>>& passes,
+                             const RenderSettings& settings);
+
 // A program of fullscreen.vert and one fragment shader.
 gl::Program build_fullscreen_program(const ShaderLoader& loader, const std::string& fragment,
                                      const std::string& defines = {});
@@ -71,10 +101,10 @@ void begin_fullscreen(GLuint framebuffer, int width, int height);
 void draw_fullscreen_triangle(GLuint empty_vertex_array);
 // A framebuffer whose colour attachment 0 is level 0 of `texture` (2-D).
 gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what);
-// Binds every G-buffer texture (both layers) and the direct light to their
-// units of shared_constants.h, for the passes that read the whole surface
-// description: the radiosity prepare pass and the debug view.
-void bind_gbuffer_and_direct_light(const FrameResources& frame);
+// Reads of every G-buffer texture (both layers) and the direct light at
+// their units of shared_constants.h, for the passes that read the whole
+// surface description: the radiosity prepare pass and the debug view.
+std::vector<PassRead> gbuffer_and_direct_light_reads();
 // Names a texture for captures: "<pass> <what>".
 void label_texture(const gl::Texture& texture, std::string_view pass, std::string_view what);
 

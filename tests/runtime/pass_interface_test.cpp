@@ -8,6 +8,7 @@
 #include "deepgi/settings.hpp"
 #include "pass.hpp"
 #include "passes/passes.hpp"
+#include "shader_shared.hpp"
 #include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -216,6 +217,9 @@ namespace {
 class CopyAoPass final : public Pass {
 public:
     std::string_view name() const override { return "toy"; }
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{PassRead::unbound, "ao.blurred"}}, .writes = {"toy.ao"}};
+    }
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -273,6 +277,7 @@ namespace {
 class BrokenPass final : public Pass {
 public:
     std::string_view name() const override { return "broken"; }
+    PassDeclaration declaration(const RenderSettings&) const override { return {}; }
     void resize(FrameResources&) override {}
     void run(FrameResources&) override { glBindTextureUnit(0, 0x7fffffffu); }
 };
@@ -303,4 +308,99 @@ TEST_CASE("passes: with gl_debug a GL error becomes an exception naming the pass
     // The default passes raise no GL error at all.
     Renderer clean(scene, settings, ShaderLoader::from_build_configuration());
     CHECK_NOTHROW(clean.render(scene.default_camera));
+}
+
+namespace {
+
+// Passes whose declarations disagree with the frame or with what they do.
+class NeedyPass final : public Pass {
+public:
+    std::string_view name() const override { return "needy"; }
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_AO, "nothing.here"}}, .writes = {}};
+    }
+    void resize(FrameResources&) override {}
+    void run(FrameResources&) override {}
+};
+
+class SecretivePass final : public Pass {
+public:
+    std::string_view name() const override { return "secretive"; }
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {}, .writes = {"secretive.declared"}};
+    }
+    void resize(FrameResources&) override {}
+    void run(FrameResources& frame) override { frame.publish("secretive.undeclared", 0); }
+};
+
+class IdlePass final : public Pass {
+public:
+    std::string_view name() const override { return "idle"; }
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {}, .writes = {"idle.promised"}};
+    }
+    void resize(FrameResources&) override {}
+    void run(FrameResources&) override {}
+};
+
+template <class P>
+std::unique_ptr<Pass> make_test_pass(const ShaderLoader&, const Scene&) {
+    return std::make_unique<P>();
+}
+
+}  // namespace
+
+TEST_CASE("passes: declarations are checked before the first frame and against what runs",
+          "[runtime][passes]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    const RenderSettings settings = settings_at(64, 32);
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    SECTION("a read that no earlier pass writes fails at construction, naming both") {
+        std::vector<PassFactory> passes = default_pass_list();
+        passes.insert(passes.begin() + 1, make_test_pass<NeedyPass>);
+        CHECK_THROWS_WITH(Renderer(scene, settings, loader, passes),
+                          "pass 'needy' reads the texture 'nothing.here', which no earlier "
+                          "enabled pass writes");
+    }
+    SECTION("a read of what a later pass writes fails too: the list order is the frame's") {
+        std::vector<PassFactory> passes = default_pass_list();
+        std::swap(passes[0], passes[1]);  // shadow after gbuffer is fine ...
+        CHECK_NOTHROW(Renderer(scene, settings, loader, passes));
+        passes = default_pass_list();
+        std::rotate(passes.begin(), passes.begin() + 3, passes.begin() + 4);  // direct light first
+        CHECK_THROWS_WITH(Renderer(scene, settings, loader, passes),
+                          Catch::Contains("reads the texture 'gbuffer."));
+    }
+    SECTION("a settings change that needs a disabled pass's texture is refused") {
+        // The march reads the back faces; with the back-face pass removed the
+        // solid angle still runs, and switching to the march is refused whole.
+        std::vector<PassFactory> passes = default_pass_list();
+        passes.erase(std::find(passes.begin(), passes.end(), &make_backface_depth_pass));
+        RenderSettings solid = settings;
+        solid.ao.method = AoMethod::solid_angle;
+        Renderer renderer(scene, solid, loader, passes);
+        CHECK_NOTHROW(renderer.render(scene.default_camera));
+        RenderSettings march = solid;
+        march.ao.method = AoMethod::march;
+        CHECK_THROWS_WITH(renderer.set_settings(march),
+                          "pass 'sao' reads the texture 'backface.depth', which no earlier "
+                          "enabled pass writes");
+        CHECK(renderer.settings().ao.method == AoMethod::solid_angle);
+    }
+    SECTION("publishing an undeclared texture fails, naming the pass") {
+        std::vector<PassFactory> passes = default_pass_list();
+        passes.push_back(make_test_pass<SecretivePass>);
+        Renderer renderer(scene, settings, loader, passes);
+        CHECK_THROWS_WITH(renderer.render(scene.default_camera),
+                          "pass 'secretive' writes the texture 'secretive.undeclared', which it "
+                          "does not declare");
+    }
+    SECTION("a declared write the pass never publishes fails, naming it") {
+        std::vector<PassFactory> passes = default_pass_list();
+        passes.push_back(make_test_pass<IdlePass>);
+        Renderer renderer(scene, settings, loader, passes);
+        CHECK_THROWS_WITH(renderer.render(scene.default_camera),
+                          "pass 'idle' declares the texture 'idle.promised' but did not write it");
+    }
 }

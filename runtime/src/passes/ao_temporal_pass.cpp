@@ -19,6 +19,14 @@ public:
 
     std::string_view name() const override { return "ao_temporal"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+                          {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"},
+                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                          {DEEPGI_UNIT_AO_RAW, "ao.raw"}},
+                .writes = {"ao.temporal"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -45,10 +53,6 @@ public:
         const HistoryPair& visibility = frame.history(visibility_history);
         glUseProgram(program);
         glProgramUniform1f(program, DEEPGI_UNIFORM_RADIOSITY_ALPHA, frame.settings->ao.alpha);
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
-        glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
-        glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
         glBindTextureUnit(DEEPGI_UNIT_AO, visibility.previous());
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY, frame.history(key_history).previous());
         begin_fullscreen(framebuffers_[visibility.written_slot].get(), width_, height_);

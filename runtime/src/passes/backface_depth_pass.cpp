@@ -24,6 +24,11 @@ public:
 
     std::string_view name() const override { return "backface_depth"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"}},
+                .writes = {"backface.depth"}};
+    }
+
     bool enabled(const RenderSettings& settings) const override {
         // The SAO pass runs (and binds this) whether or not compose uses AO.
         return settings.ao.method == AoMethod::march;
@@ -52,7 +57,6 @@ public:
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT);
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
         for (int layer = 0; layer < frame.settings->ao.layers; ++layer) {
             const GLuint framebuffer = framebuffers_[std::size_t(layer)].get();
             const float nothing_hit = 0.0f;  // reversed Z: 0 is infinitely far

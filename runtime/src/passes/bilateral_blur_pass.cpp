@@ -46,6 +46,13 @@ public:
 
     std::string_view name() const override { return "ao_blur"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "ao.temporal"},
+                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
+                .writes = {"ao.blurred"}};
+    }
+
     void resize(FrameResources& frame) override {
         resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,
                               GL_R16F);
@@ -80,6 +87,16 @@ public:
     explicit BlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader, 2)) {}
 
     std::string_view name() const override { return "blur"; }
+
+    PassDeclaration declaration(const RenderSettings&) const override {
+        // run_bilateral_blur() binds the sources and keys again itself, since
+        // its horizontal step rebinds the source units to its intermediates.
+        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "ao.temporal"},
+                          {DEEPGI_UNIT_BLUR_SECOND_SOURCE, "radiosity.irradiance.layer0"},
+                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
+                .writes = {"ao.blurred", "radiosity.blurred"}};
+    }
 
     void resize(FrameResources& frame) override {
         const GLenum formats[] = {GL_R16F, GL_RGBA16F};

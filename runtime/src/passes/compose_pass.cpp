@@ -15,6 +15,17 @@ public:
 
     std::string_view name() const override { return "compose"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"},
+                          {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
+                          {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
+                          {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
+                          {DEEPGI_UNIT_AO, "ao.blurred"},
+                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+                          {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"}},
+                .writes = {"compose.radiance"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -25,13 +36,6 @@ public:
 
     void run(FrameResources& frame) override {
         begin_fullscreen(framebuffer_.get(), width_, height_);
-        glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY, frame.texture("radiosity.blurred"));
         const RenderSettings& settings = *frame.settings;
         glProgramUniform3i(program_.get(), DEEPGI_UNIFORM_COMPOSE_TERMS,
                            settings.ao.enabled ? 1 : 0, settings.radiosity.enabled ? 1 : 0,

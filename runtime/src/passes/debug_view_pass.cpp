@@ -13,6 +13,21 @@ public:
         : program_(build_fullscreen_program(loader, "debug_view.frag")) {}
 
     std::string_view name() const override { return "debug_view"; }
+
+    PassDeclaration declaration(const RenderSettings&) const override {
+        std::vector<PassRead> reads = gbuffer_and_direct_light_reads();
+        reads.insert(reads.end(),
+                     {{DEEPGI_UNIT_AO_RAW, "ao.raw"},
+                      {DEEPGI_UNIT_AO, "ao.blurred"},
+                      {DEEPGI_UNIT_AO_TEMPORAL, "ao.temporal"},
+                      {DEEPGI_UNIT_RADIOSITY_RADIANCE, "radiosity_prepare.radiance"},
+                      {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"},
+                      // The temporally filtered E of each layer, at the units the
+                      // radiosity pass uses for the raw gather.
+                      {DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, "radiosity.irradiance.layer0"},
+                      {DEEPGI_UNIT_RADIOSITY_RAW_LAYER1, "radiosity.irradiance.layer1"}});
+        return {.reads = std::move(reads), .writes = {}};
+    }
     void resize(FrameResources&) override {}
     bool enabled(const RenderSettings& settings) const override {
         return settings.view != DebugView::final_image;
@@ -21,17 +36,6 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
-        bind_gbuffer_and_direct_light(frame);
-        glBindTextureUnit(DEEPGI_UNIT_AO_RAW, frame.texture("ao.raw"));
-        glBindTextureUnit(DEEPGI_UNIT_AO, frame.texture("ao.blurred"));
-        glBindTextureUnit(DEEPGI_UNIT_AO_TEMPORAL, frame.texture("ao.temporal"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RADIANCE,
-                          frame.texture("radiosity_prepare.radiance"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY, frame.texture("radiosity.blurred"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0,
-                          frame.texture("radiosity.irradiance.layer0"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER1,
-                          frame.texture("radiosity.irradiance.layer1"));
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
     }

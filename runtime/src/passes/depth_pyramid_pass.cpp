@@ -34,6 +34,11 @@ public:
 
     std::string_view name() const override { return "depth_pyramid"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"}},
+                .writes = {"depth_pyramid"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -52,7 +57,6 @@ public:
     void run(FrameResources& frame) override {
         const GLuint pyramid = pyramid_.get();
         glUseProgram(base_level_.get());
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
         glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY,
                            GL_RG32F);
         dispatch_over(width_, height_);

@@ -16,6 +16,15 @@ public:
 
     std::string_view name() const override { return "direct_light"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+                          {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
+                          {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
+                          {DEEPGI_UNIT_SHADOW_MAP, "shadow.depth"},
+                          {DEEPGI_UNIT_SHADOW_CUBE, "shadow.cube"}},
+                .writes = {"direct_light.radiance"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -31,11 +40,6 @@ public:
     }
 
     void run(FrameResources& frame) override {
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_SHADOW_MAP, frame.texture("shadow.depth"));
-        glBindTextureUnit(DEEPGI_UNIT_SHADOW_CUBE, frame.texture("shadow.cube"));
         glUseProgram(program_.get());
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(layer_framebuffers_[layer].get(), width_, height_);

@@ -37,13 +37,13 @@ void label_texture(const gl::Texture& texture, std::string_view pass, std::strin
     glObjectLabel(GL_TEXTURE, texture.get(), -1, label.c_str());
 }
 
-void bind_gbuffer_and_direct_light(const FrameResources& frame) {
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_ALBEDO, frame.texture("gbuffer.albedo"));
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_EMISSIVE, frame.texture("gbuffer.emissive"));
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_DEPTH, frame.texture("gbuffer.depth"));
-    glBindTextureUnit(DEEPGI_UNIT_DIRECT_LIGHT, frame.texture("direct_light.radiance"));
+std::vector<PassRead> gbuffer_and_direct_light_reads() {
+    return {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+            {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
+            {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
+            {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"},
+            {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
+            {DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"}};
 }
 
 }  // namespace deepgi

@@ -69,6 +69,12 @@ public:
 
     std::string_view name() const override { return "gbuffer"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {},
+                .writes = {"gbuffer.normal", "gbuffer.albedo", "gbuffer.emissive", "gbuffer.motion",
+                           "gbuffer.depth"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;

@@ -32,6 +32,16 @@ public:
 
     std::string_view name() const override { return "radiosity"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                          {DEEPGI_UNIT_RADIOSITY_RADIANCE, "radiosity_prepare.radiance"},
+                          {DEEPGI_UNIT_RADIOSITY_NORMAL, "radiosity_prepare.normal"},
+                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+                          {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"}},
+                .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",
+                           "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -74,10 +84,6 @@ public:
         // The prepare pass builds as many levels as the depth pyramid.
         glProgramUniform2f(gather, DEEPGI_UNIFORM_RADIOSITY_MIP, frame.settings->ao.q,
                            float(frame.integer("depth_pyramid.max_level")));
-        glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RADIANCE,
-                          frame.texture("radiosity_prepare.radiance"));
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_NORMAL, frame.texture("radiosity_prepare.normal"));
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
             glProgramUniform1i(gather, DEEPGI_UNIFORM_LAYER, layer);
@@ -87,8 +93,6 @@ public:
         const GLuint temporal = temporal_.get();
         glUseProgram(temporal);
         glProgramUniform1f(temporal, DEEPGI_UNIFORM_RADIOSITY_ALPHA, settings.alpha);
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_MOTION, frame.texture("gbuffer.motion"));
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             const HistoryPair& irradiance = frame.history(history_name(layer));
             glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, raw_[layer].get());
@@ -144,6 +148,13 @@ public:
     explicit RadiosityBlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader)) {}
 
     std::string_view name() const override { return "radiosity_blur"; }
+
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "radiosity.irradiance.layer0"},
+                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
+                .writes = {"radiosity.blurred"}};
+    }
 
     void resize(FrameResources& frame) override {
         resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,

@@ -40,6 +40,11 @@ public:
 
     std::string_view name() const override { return "radiosity_prepare"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = gbuffer_and_direct_light_reads(),
+                .writes = {"radiosity_prepare.radiance", "radiosity_prepare.normal"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -58,7 +63,6 @@ public:
         glUseProgram(base);
         glProgramUniform4f(base, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, 0.0f, settings.boost, 0.0f,
                            settings.rho_prop);
-        bind_gbuffer_and_direct_light(frame);
         // Last frame's filtered E and its keys (radiosity_pass.cpp owns them).
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
                           frame.history("radiosity-layer0").previous());

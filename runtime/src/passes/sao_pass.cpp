@@ -16,6 +16,15 @@ public:
 
     std::string_view name() const override { return "sao"; }
 
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        std::vector<PassRead> reads = {{DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
+                                       {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}};
+        // Only the march ends each solid at its back face.
+        if (settings.ao.method == AoMethod::march)
+            reads.push_back({DEEPGI_UNIT_BACKFACE_DEPTH, "backface.depth"});
+        return {.reads = std::move(reads), .writes = {"ao.raw"}};
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
@@ -30,10 +39,6 @@ public:
         const AoSettings& settings = frame.settings->ao;
         const GLuint program = settings.layers == 1 ? one_layer_.get() : two_layers_.get();
         begin_fullscreen(framebuffer_.get(), width_, height_);
-        glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, frame.texture("depth_pyramid"));
-        glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, frame.texture("gbuffer.normal"));
-        if (settings.method == AoMethod::march)
-            glBindTextureUnit(DEEPGI_UNIT_BACKFACE_DEPTH, frame.texture("backface.depth"));
         glProgramUniform4f(program, DEEPGI_UNIFORM_SAO_PARAMETERS, settings.radius, settings.bias,
                            settings.intensity, settings.q);
         glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP,

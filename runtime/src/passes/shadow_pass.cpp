@@ -54,6 +54,10 @@ public:
 
     std::string_view name() const override { return "shadow"; }
 
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {}, .writes = {"shadow.depth", "shadow.cube"}};
+    }
+
     void resize(FrameResources& frame) override {
         const int size = frame.settings->shadow_map_size;
         frame.shadow = shadow_projection(*frame.scene, size);

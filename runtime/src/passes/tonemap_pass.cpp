@@ -12,6 +12,10 @@ public:
         : program_(build_fullscreen_program(loader, "tonemap.frag")) {}
 
     std::string_view name() const override { return "tonemap"; }
+
+    PassDeclaration declaration(const RenderSettings&) const override {
+        return {.reads = {{DEEPGI_UNIT_COMPOSE, "compose.radiance"}}, .writes = {}};
+    }
     void resize(FrameResources&) override {}  // writes the frame's display image
     bool enabled(const RenderSettings& settings) const override {
         return settings.view == DebugView::final_image;
@@ -20,7 +24,6 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
-        glBindTextureUnit(DEEPGI_UNIT_COMPOSE, frame.texture("compose.radiance"));
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
     }

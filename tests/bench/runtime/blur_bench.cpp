@@ -36,6 +36,9 @@ double median(std::vector<double> values) {
 class StandInRadiosityPass final : public deepgi::Pass {
 public:
     std::string_view name() const override { return "radiosity_stand_in"; }
+    deepgi::PassDeclaration declaration(const deepgi::RenderSettings&) const override {
+        return {.reads = {}, .writes = {"radiosity.irradiance.layer0"}};
+    }
     void resize(deepgi::FrameResources& frame) override {
         const int w = frame.layout.internal_width;
         const int h = frame.layout.internal_height;
