@@ -34,6 +34,8 @@ set_tests_properties(deepgi_image_identity PROPERTIES LABELS runtime TIMEOUT 300
 add_executable(deepgi_pass_interface_tests ${CMAKE_CURRENT_LIST_DIR}/pass_interface_test.cpp)
 target_link_libraries(deepgi_pass_interface_tests PRIVATE deepgi::runtime spiral_catch_main)
 target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/tests)
+target_compile_definitions(deepgi_pass_interface_tests
+                           PRIVATE DEEPGI_ARCHITECTURE_DOC="${PROJECT_SOURCE_DIR}/docs/architecture.md")
 catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEOUT 300)
 
 # The interactive window: keys, settings table, script parser and the

@@ -12,6 +12,7 @@
 #include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -403,4 +404,48 @@ TEST_CASE("passes: declarations are checked before the first frame and against w
         CHECK_THROWS_WITH(renderer.render(scene.default_camera),
                           "pass 'idle' declares the texture 'idle.promised' but did not write it");
     }
+}
+
+namespace {
+
+// The declarations of the default passes as the Markdown rows that
+// docs/architecture.md keeps between its pass-declarations markers.
+std::string declaration_table(const RenderSettings& settings) {
+    const Scene scene = make_builtin_scene("cornell");
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    std::string table = "| pass | reads (texture unit) | writes |\n|---|---|---|\n";
+    for (PassFactory make : default_pass_list()) {
+        const std::unique_ptr<Pass> pass = make(loader, scene);
+        const PassDeclaration declaration = pass->declaration(settings);
+        std::string reads, writes;
+        for (const PassRead& read : declaration.reads)
+            reads +=
+                fmt::format("{}`{}` ({})", reads.empty() ? "" : ", ", read.texture, read.binding);
+        for (const std::string& name : declaration.writes)
+            writes += fmt::format("{}`{}`", writes.empty() ? "" : ", ", name);
+        table += fmt::format("| `{}` | {} | {} |\n", pass->name(), reads.empty() ? "-" : reads,
+                             writes.empty() ? "-" : writes);
+    }
+    return table;
+}
+
+}  // namespace
+
+TEST_CASE("passes: docs/architecture.md lists every pass's declared reads and writes",
+          "[runtime][passes]") {
+    HeadlessContext context;
+    const std::string expected = declaration_table(RenderSettings{});
+    const std::string doc = file_bytes(DEEPGI_ARCHITECTURE_DOC);
+    const std::string begin = "<!-- pass-declarations:begin -->\n";
+    const std::string end = "<!-- pass-declarations:end -->";
+    const auto first = doc.find(begin);
+    const auto last = doc.find(end);
+    REQUIRE(first != std::string::npos);
+    REQUIRE(last != std::string::npos);
+    const std::string documented = doc.substr(first + begin.size(), last - first - begin.size());
+    // The expected block, written beside the test's working directory too
+    // (Catch wraps long lines): paste it between the markers.
+    std::ofstream("pass-declarations.md") << expected;
+    INFO("expected between the markers (also in pass-declarations.md):\n" << expected);
+    CHECK(documented == expected);
 }
