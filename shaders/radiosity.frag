@@ -41,6 +41,7 @@
 // the mean of B cos(theta_X) over the samples that found a surface, whatever
 // solid angle each of them stands for.
 #include "frame_constants.glsl"
+#include "pass_parameters.h"
 #include "gbuffer_encoding.glsl"
 #include "pixel_rotation.glsl"
 #include "radiosity_taps.glsl"
@@ -51,13 +52,9 @@ layout(binding = DEEPGI_UNIT_RADIOSITY_RADIANCE) uniform sampler2DArray prepared
 layout(binding = DEEPGI_UNIT_RADIOSITY_NORMAL) uniform sampler2DArray prepared_normal;
 
 layout(location = DEEPGI_UNIFORM_LAYER) uniform int layer;
-// x: world-space radius (m), y: unused, z: per-sample contribution clamp, w: unused
-layout(location = DEEPGI_UNIFORM_RADIOSITY_PARAMETERS) uniform vec4 radiosity_parameters;
-layout(location = DEEPGI_UNIFORM_RADIOSITY_LAYERS) uniform int gather_layers;  // 1 or 2
-// x: q (px), the tap distance at which taps move one MIP level down; y: the
-// deepest level (float-encoded int).
-layout(location = DEEPGI_UNIFORM_RADIOSITY_MIP) uniform vec2 mip_parameters;
-layout(location = DEEPGI_UNIFORM_RADIOSITY_METHOD) uniform int radiosity_method;  // DEEPGI_RADIOSITY_METHOD_*
+layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
+  RadiosityGatherParameters gather;
+};
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
@@ -82,10 +79,10 @@ void main() {
     out_irradiance = vec4(0.0);
     return;
   }
-  float radius = radiosity_parameters.x;
-  float tap_clamp = radiosity_parameters.z;
-  float q = mip_parameters.x;
-  int max_mip = int(mip_parameters.y);
+  float radius = gather.radius;
+  float tap_clamp = gather.tap_clamp;
+  float q = gather.q;
+  int max_mip = gather.max_mip;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = decode_normal(texelFetch(prepared_normal, ivec3(pixel, layer), 0).xy);
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
@@ -96,7 +93,7 @@ void main() {
   mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);
 
-  bool area = radiosity_method == DEEPGI_RADIOSITY_METHOD_AREA;
+  bool area = gather.method == DEEPGI_RADIOSITY_METHOD_AREA;
   vec3 sum = vec3(0.0);
   float coverage = 0.0;  // area: sum of cos(theta_X) w_ij (without r^2)
   int used = 0;
@@ -111,7 +108,7 @@ void main() {
     ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
     vec2 tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
-    for (int j = 0; j < gather_layers; ++j) {
+    for (int j = 0; j < gather.layers; ++j) {
       float tap_depth = j == 0 ? tap_depths.r : tap_depths.g;
       if (tap_depth <= 0.0) continue;
       vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
@@ -140,7 +137,7 @@ void main() {
     out_irradiance = vec4(sum * scale, min(coverage * (2.0 / float(RADIOSITY_NUM_TAPS)), 1.0));
     return;
   }
-  float samples = float(RADIOSITY_NUM_TAPS * gather_layers);
+  float samples = float(RADIOSITY_NUM_TAPS * gather.layers);
   vec3 irradiance = used > 0 ? sum * (two_pi / float(used)) : vec3(0.0);
   out_irradiance = vec4(irradiance, float(used) / samples);
 }

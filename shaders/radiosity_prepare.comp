@@ -18,6 +18,7 @@
 // Variant PREPARE_BASE_LEVEL writes level 0; the other variant writes a level
 // from the level above it.
 #include "frame_constants.glsl"
+#include "pass_parameters.h"
 #include "gbuffer_encoding.glsl"
 #include "history_reprojection.glsl"
 #include "rotated_grid.glsl"
@@ -38,8 +39,10 @@ layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0) uniform sampler2D previo
 layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1) uniform sampler2D previous_irradiance1;
 layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key0;
 layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1) uniform sampler2D history_key1;
-// x: unused, y: boost amount in [0, 1] (0: boost = 1), z: unused, w: rho_prop
-layout(location = DEEPGI_UNIFORM_RADIOSITY_PARAMETERS) uniform vec4 radiosity_parameters;
+// The boost amount and rho_prop (pass_parameters.h).
+layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityPrepareBlock {
+  RadiosityPrepareParameters prepare;
+};
 #else
 layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rgba16f) uniform readonly image2DArray radiance_source;
 layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE, rg16f) uniform readonly image2DArray normal_source;
@@ -78,11 +81,11 @@ void main() {
     vec4 radiance = vec4(0.0);
     vec2 encoded_normal = texelFetch(gbuffer_normal, at, 0).xy;
     if (texelFetch(gbuffer_depth, at, 0).r > 0.0) {
-      float rho_prop = radiosity_parameters.w;
+      float rho_prop = prepare.rho_prop;
       vec3 rho = srgb_decode(texelFetch(gbuffer_albedo, at, 0).rgb);
       vec3 bounce = vec3(0.0);
       if (rho_prop > 0.0) bounce = rho_prop * inv_pi * rho * previous_irradiance(texel, layer, decode_normal(encoded_normal));
-      radiance.rgb = (texelFetch(direct_light, at, 0).rgb + bounce) * boost(rho, radiosity_parameters.y);
+      radiance.rgb = (texelFetch(direct_light, at, 0).rgb + bounce) * boost(rho, prepare.boost);
       if (layer == 0) radiance.rgb += texelFetch(gbuffer_emissive, at, 0).rgb;
       radiance.a = 1.0;
     }

@@ -12,6 +12,7 @@
 // methods, signed (at most 1) for the solid-angle method, whose consumers
 // clamp it.
 #include "frame_constants.glsl"
+#include "pass_parameters.h"
 #include "gbuffer_encoding.glsl"
 #include "pixel_rotation.glsl"
 #include "ao_taps.glsl"
@@ -26,17 +27,16 @@ layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_norm
 // surface (reversed Z, 0 = none), where that surface's object ends.
 layout(binding = DEEPGI_UNIT_BACKFACE_DEPTH) uniform sampler2DArray backface_depth;
 
-// x: world-space radius r (m), y: bias beta (m), z: intensity (exponent), w: q (px)
-layout(location = DEEPGI_UNIFORM_SAO_PARAMETERS) uniform vec4 sao_parameters;
-layout(location = DEEPGI_UNIFORM_SAO_MAX_MIP) uniform int max_mip;
-// DEEPGI_AO_METHOD_PUBLISHED: 1 - sqrt(pi/N * sum AO(X, Y)), the published
-// heuristic. DEEPGI_AO_METHOD_SOLID_ANGLE: the obscurance integral of the
-// ray-traced reference, estimated over the visible surface (below).
+// sao.method: DEEPGI_AO_METHOD_PUBLISHED: 1 - sqrt(pi/N * sum AO(X, Y)), the
+// published heuristic. DEEPGI_AO_METHOD_SOLID_ANGLE: the obscurance integral
+// of the ray-traced reference, estimated over the visible surface (below).
 // DEEPGI_AO_METHOD_MARCH: the reference's own rays, marched (below).
-layout(location = DEEPGI_UNIFORM_SAO_METHOD) uniform int ao_method;
-// March only: how deep (m) behind a stored surface with no back face behind
-// it (an open mesh: a floor, a wall plane) the scene is taken as solid.
-layout(location = DEEPGI_UNIFORM_SAO_THICKNESS) uniform float thickness;
+// sao.thickness, march only: how deep (m) behind a stored surface with no
+// back face behind it (an open mesh: a floor, a wall plane) the scene is
+// taken as solid.
+layout(std140, binding = DEEPGI_UBO_PASS) uniform SaoBlock {
+  SaoParameters sao;
+};
 
 layout(location = 0) out float out_visibility;
 
@@ -154,7 +154,7 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
         if (depth <= 0.0 || z <= depth) continue;
         float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
         float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
-                                          : depth + thickness;
+                                          : depth + sao.thickness;
         if (z >= solid_end) continue;
         vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
         vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
@@ -187,10 +187,10 @@ void main() {
     out_visibility = 1.0;
     return;
   }
-  float radius = sao_parameters.x;
-  float bias = sao_parameters.y;
-  float intensity = sao_parameters.z;
-  float q = sao_parameters.w;
+  float radius = sao.radius;
+  float bias = sao.bias;
+  float intensity = sao.intensity;
+  float q = sao.q;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
 
@@ -200,7 +200,7 @@ void main() {
   mat2 rotation = pixel_rotation(uvec2(pixel));
   // This frame's step of the rotation cycle (frame.cpp), which ao_temporal.frag averages over.
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
-  if (ao_method == DEEPGI_AO_METHOD_MARCH) {
+  if (sao.method == DEEPGI_AO_METHOD_MARCH) {
     out_visibility = pow(march_visibility(uvec2(pixel), position, normal, radius, bias, rotation), intensity);
     return;
   }
@@ -221,7 +221,7 @@ void main() {
     // m_i = clamp(floor(log2(h_i / q)), 0, max_mip), in integers: floor(log2(x))
     // of x >= 1 is the highest set bit of floor(x), exact where log2() may round.
     float steps = min(AO_TAP_ALPHAS[i] * radius_pixels / q, 65536.0);
-    int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), max_mip);
+    int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), sao.max_mip);
     // Level sizes follow GL's rule max(1, size >> level). Computed rather than
     // asked of textureSize(): llvmpipe (Mesa 22, LLVM 15) answers textureSize
     // with a lod that varies across the SIMD lanes wrongly, and taps vanish.
@@ -233,7 +233,7 @@ void main() {
     // shades open floors seen at a grazing angle.
     vec2 tap_centre = vec2(source_pixel(texel, level, size)) + 0.5;
     float occlusion = 0.0;
-    if (ao_method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
+    if (sao.method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
       ivec2 source = ivec2(tap_centre);
       for (int layer = 0; layer < AO_LAYERS; ++layer) {
         float tap_depth = layer == 0 ? tap_depths.r : tap_depths.g;
@@ -258,7 +258,7 @@ void main() {
     }
     sum += occlusion;
   }
-  if (ao_method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
+  if (sao.method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
     // Signed: the estimate of 1 - O is unbiased, but next to a crease its
     // taps' weights 1 / |v|^2 make it heavy-tailed, and many pixels fall
     // below 0. Clamping each pixel here would cut that tail before the blur

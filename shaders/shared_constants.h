@@ -11,6 +11,7 @@
 
 // Uniform block binding points.
 #define DEEPGI_UBO_FRAME 0
+#define DEEPGI_UBO_PASS 1  // the running pass's own block (pass_parameters.h)
 
 // Texture units (sampler bindings).
 #define DEEPGI_UNIT_GBUFFER_NORMAL 0
@@ -71,19 +72,11 @@
 #define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
 #define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
-#define DEEPGI_UNIFORM_SAO_PARAMETERS 21   // vec4: world radius (m), bias (m), intensity, q (px)
-#define DEEPGI_UNIFORM_SAO_MAX_MIP 22      // int: deepest pyramid level a tap may read
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
-#define DEEPGI_UNIFORM_SAO_METHOD 25      // int: DEEPGI_AO_METHOD_*
 #define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
-#define DEEPGI_UNIFORM_RADIOSITY_PARAMETERS 26  // vec4: radius (m), boost amount, tap clamp, rho_prop
-#define DEEPGI_UNIFORM_RADIOSITY_LAYERS 27      // int: 1 or 2 layers gathered
-#define DEEPGI_UNIFORM_RADIOSITY_MIP 28         // vec2: q (px) and deepest MIP level the taps may read
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
-#define DEEPGI_UNIFORM_RADIOSITY_METHOD 37      // int: DEEPGI_RADIOSITY_METHOD_*
-#define DEEPGI_UNIFORM_SAO_THICKNESS 38         // float: solid behind a surface with no back face (m), march only
 #define DEEPGI_UNIFORM_BACKFACE_LAYER 39        // int: the G-buffer layer the back faces must lie behind
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them

@@ -1,5 +1,6 @@
 #pragma once
 // The C++ view of shaders/shared_constants.h: GLSL's vector types are glm's.
+#include "deepgi/gl_objects.hpp"
 #include "deepgi/settings.hpp"
 
 #include <glm/glm.hpp>
@@ -11,6 +12,7 @@ using mat4 = glm::mat4;
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
 #include "shared_constants.h"
+#include "pass_parameters.h"
 }  // namespace deepgi::shader_shared
 
 namespace deepgi::shader_shared {
@@ -27,3 +29,30 @@ static_assert(offsetof(FrameConstants, temporal_angle) == 5 * 64 + 9 * 16 + 12);
 static_assert(sizeof(FrameConstants) == 5 * 64 + 10 * 16,
               "FrameConstants must keep the std140 layout of shared_constants.h");
 }  // namespace deepgi::shader_shared
+
+namespace deepgi::shader_shared {
+// The passes' own blocks: scalars only, whole 16-byte rows (pass_parameters.h).
+static_assert(sizeof(SaoParameters) == 32 && offsetof(SaoParameters, max_mip) == 16);
+static_assert(sizeof(RadiosityGatherParameters) == 32 &&
+              offsetof(RadiosityGatherParameters, layers) == 16);
+static_assert(sizeof(RadiosityPrepareParameters) == 16);
+}  // namespace deepgi::shader_shared
+
+namespace deepgi {
+// A pass's own uniform block: uploaded and bound at DEEPGI_UBO_PASS right
+// before the pass draws with it.
+template <class Block>
+class ParameterBlock {
+public:
+    ParameterBlock() : buffer_(gl::create_buffer()) {
+        glNamedBufferStorage(buffer_.get(), sizeof(Block), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    void bind(const Block& values) const {
+        glNamedBufferSubData(buffer_.get(), 0, sizeof(Block), &values);
+        glBindBufferBase(GL_UNIFORM_BUFFER, DEEPGI_UBO_PASS, buffer_.get());
+    }
+
+private:
+    gl::Buffer buffer_;
+};
+}  // namespace deepgi

@@ -76,14 +76,15 @@ public:
         const RadiositySettings& settings = frame.settings->radiosity;
         const GLuint gather = gather_.get();
         glUseProgram(gather);
-        glProgramUniform4f(gather, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, settings.radius, 0.0f,
-                           settings.tap_clamp, 0.0f);
-        glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_LAYERS, settings.layers);
-        glProgramUniform1i(gather, DEEPGI_UNIFORM_RADIOSITY_METHOD,
-                           static_cast<int>(settings.method));
         // The prepare pass builds as many levels as the depth pyramid.
-        glProgramUniform2f(gather, DEEPGI_UNIFORM_RADIOSITY_MIP, frame.settings->ao.q,
-                           float(frame.integer("depth_pyramid.max_level")));
+        parameters_.bind({.radius = settings.radius,
+                          .tap_clamp = settings.tap_clamp,
+                          .q = frame.settings->ao.q,
+                          .max_mip = frame.integer("depth_pyramid.max_level"),
+                          .layers = settings.layers,
+                          .method = static_cast<int>(settings.method),
+                          .unused0 = 0.0f,
+                          .unused1 = 0.0f});
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
             glProgramUniform1i(gather, DEEPGI_UNIFORM_LAYER, layer);
@@ -133,6 +134,7 @@ public:
 
 private:
     gl::Program gather_;
+    ParameterBlock<shader_shared::RadiosityGatherParameters> parameters_;
     gl::Program temporal_;
     gl::Texture raw_[DEEPGI_LAYER_COUNT];  // this frame's gather, before the temporal filter
     gl::Framebuffer raw_framebuffers_[DEEPGI_LAYER_COUNT];

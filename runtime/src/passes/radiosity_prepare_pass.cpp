@@ -61,8 +61,10 @@ public:
         const RadiositySettings& settings = frame.settings->radiosity;
         const GLuint base = base_level_.get();
         glUseProgram(base);
-        glProgramUniform4f(base, DEEPGI_UNIFORM_RADIOSITY_PARAMETERS, 0.0f, settings.boost, 0.0f,
-                           settings.rho_prop);
+        parameters_.bind({.boost = settings.boost,
+                          .rho_prop = settings.rho_prop,
+                          .unused0 = 0.0f,
+                          .unused1 = 0.0f});
         // Last frame's filtered E and its keys (radiosity_pass.cpp owns them).
         glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
                           frame.history("radiosity-layer0").previous());
@@ -130,8 +132,9 @@ private:
 
     gl::Program base_level_;  // level 0 from the G-buffer, direct light and last frame's E
     gl::Program reduce_;      // level m + 1 from level m
-    gl::Texture radiance_;    // RGBA16F array, 2 layers: rgb B, a 1 where a surface is
-    gl::Texture normal_;      // RG16F array, 2 layers: octahedral camera-space normal
+    ParameterBlock<shader_shared::RadiosityPrepareParameters> parameters_;
+    gl::Texture radiance_;  // RGBA16F array, 2 layers: rgb B, a 1 where a surface is
+    gl::Texture normal_;    // RG16F array, 2 layers: octahedral camera-space normal
     int width_ = 0;
     int height_ = 0;
     int levels_ = 0;

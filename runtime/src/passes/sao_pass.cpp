@@ -39,12 +39,14 @@ public:
         const AoSettings& settings = frame.settings->ao;
         const GLuint program = settings.layers == 1 ? one_layer_.get() : two_layers_.get();
         begin_fullscreen(framebuffer_.get(), width_, height_);
-        glProgramUniform4f(program, DEEPGI_UNIFORM_SAO_PARAMETERS, settings.radius, settings.bias,
-                           settings.intensity, settings.q);
-        glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_MAX_MIP,
-                           frame.integer("depth_pyramid.max_level"));
-        glProgramUniform1i(program, DEEPGI_UNIFORM_SAO_METHOD, static_cast<int>(settings.method));
-        glProgramUniform1f(program, DEEPGI_UNIFORM_SAO_THICKNESS, settings.thickness);
+        parameters_.bind({.radius = settings.radius,
+                          .bias = settings.bias,
+                          .intensity = settings.intensity,
+                          .q = settings.q,
+                          .max_mip = frame.integer("depth_pyramid.max_level"),
+                          .method = static_cast<int>(settings.method),
+                          .thickness = settings.thickness,
+                          .unused0 = 0.0f});
         glUseProgram(program);
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("ao.raw", visibility_.get());
@@ -61,6 +63,7 @@ public:
 private:
     gl::Program one_layer_;
     gl::Program two_layers_;
+    ParameterBlock<shader_shared::SaoParameters> parameters_;
     gl::Texture visibility_;  // R16F ambient visibility, signed (at most 1)
     gl::Framebuffer framebuffer_;
     int width_ = 0;

@@ -1,0 +1,45 @@
+// Each pass's own parameter block, shared by its host file and its shader as
+// shared_constants.h is: the common subset of C++ and GLSL, every member a
+// 4-byte scalar and every struct a whole number of 16-byte rows, so std140
+// lays it out exactly as C++ does (static_asserts in shader_shared.hpp). A
+// pass uploads its block and binds it at DEEPGI_UBO_PASS before it draws; a
+// shader declares `layout(std140, binding = DEEPGI_UBO_PASS) uniform
+// SaoBlock { SaoParameters sao; };` and reads named fields.
+#ifndef DEEPGI_PASS_PARAMETERS_H
+#define DEEPGI_PASS_PARAMETERS_H
+
+// Deep SAO (sao.frag).
+struct SaoParameters {
+  float radius;     // world-space gather radius r (m)
+  float bias;       // beta (m)
+  float intensity;  // exponent on the visibility
+  float q;          // screen-space radius (px) at which taps move one MIP level down
+
+  int max_mip;      // deepest depth-pyramid level a tap may read
+  int method;       // DEEPGI_AO_METHOD_*
+  float thickness;  // march: solid depth (m) behind a surface with no back face
+  float unused0;
+};
+
+// The deep radiosity gather (radiosity.frag).
+struct RadiosityGatherParameters {
+  float radius;     // world-space gather radius (m)
+  float tap_clamp;  // largest contribution of one sample, per channel
+  float q;          // px: the tap distance at which taps move one MIP level down
+  int max_mip;      // deepest level of the prepared radiance the taps may read
+
+  int layers;  // 1 or 2 layers gathered
+  int method;  // DEEPGI_RADIOSITY_METHOD_*
+  float unused0;
+  float unused1;
+};
+
+// The radiosity prepare pass (radiosity_prepare.comp).
+struct RadiosityPrepareParameters {
+  float boost;     // 0: boost(rho) = 1; 1: the saturation boost
+  float rho_prop;  // share of last frame's indirect light fed into this gather
+  float unused0;
+  float unused1;
+};
+
+#endif
