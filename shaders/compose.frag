@@ -30,7 +30,7 @@ layout(location = DEEPGI_UNIFORM_COMPOSE_TERMS) uniform ivec3 terms;
 
 layout(location = 0) out vec3 out_radiance;
 
-const float pi = 3.14159265;
+#include "math_constants.glsl"
 
 // Irradiance from the environment onto a surface with world-space normal n.
 // Constant scenes: pi * ambient (a uniform sky of radiance `ambient`). Sky

@@ -1,6 +1,6 @@
 // The key light as seen from a camera-space point: shared by the direct light
 // pass now and by later passes that relight surfaces.
-const float PI = 3.14159265358979;
+#include "math_constants.glsl"
 
 layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
 layout(binding = DEEPGI_UNIT_SHADOW_CUBE) uniform samplerCubeShadow shadow_cube;
@@ -70,5 +70,5 @@ vec3 lambertian_direct(vec3 camera_position, vec3 camera_normal, vec3 albedo) {
   vec3 irradiance = light_irradiance(camera_position, to_light);
   float cosine = max(dot(camera_normal, to_light), 0.0);
   if (cosine <= 0.0) return vec3(0.0);
-  return albedo / PI * irradiance * cosine * shadow_visibility(camera_position, camera_normal);
+  return albedo / pi * irradiance * cosine * shadow_visibility(camera_position, camera_normal);
 }

@@ -46,6 +46,7 @@
 #include "pixel_rotation.glsl"
 #include "radiosity_taps.glsl"
 #include "rotated_grid.glsl"
+#include "math_constants.glsl"
 
 layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
 layout(binding = DEEPGI_UNIT_RADIOSITY_RADIANCE) uniform sampler2DArray prepared_radiance;
@@ -58,7 +59,6 @@ layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
-const float two_pi = 6.2831853;
 
 // w_ij above without its factor r^2 (the caller's), for a sample that passed
 // the facing tests. A patch seen edge-on stands for unbounded area: its weight is

@@ -22,6 +22,7 @@
 #include "gbuffer_encoding.glsl"
 #include "history_reprojection.glsl"
 #include "rotated_grid.glsl"
+#include "math_constants.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -48,7 +49,6 @@ layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rgba16f) uniform readonly image2DA
 layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE, rg16f) uniform readonly image2DArray normal_source;
 #endif
 
-const float inv_pi = 0.31830989;
 
 #ifdef PREPARE_BASE_LEVEL
 // (max_c rho - min_c rho) / max_c rho blended with 1 by `amount`.

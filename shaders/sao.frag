@@ -14,7 +14,9 @@
 #include "frame_constants.glsl"
 #include "pass_parameters.h"
 #include "gbuffer_encoding.glsl"
+#include "math_constants.glsl"
 #include "pixel_rotation.glsl"
+#include "rotated_grid.glsl"
 #include "ao_taps.glsl"
 
 #ifndef AO_LAYERS
@@ -43,7 +45,6 @@ layout(location = 0) out float out_visibility;
 // Keeps a tap at the centre from dividing by zero; m^2, far below any v.v a
 // tap past the bias can have.
 const float obscurance_epsilon = 1.0e-4;
-const float pi = 3.14159265;
 
 // One tap's term of the solid-angle estimator. The reference defines
 //   O(X) = 1/pi * int_hemisphere f(d) cos(theta) dw,  f(d) = 1 - d^2 / r^2,
@@ -170,15 +171,6 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
   return 1.0 - occlusion / float(DEEPGI_AO_MARCH_RAYS);
 }
 
-// The level-0 pixel whose depth texel `texel` of `level` holds: walks the
-// rotated-grid choice of depth_pyramid.comp back down to level 0.
-ivec2 source_pixel(ivec2 texel, int level, ivec2 size) {
-  for (int l = level; l > 0; --l) {
-    ivec2 corner = ivec2((texel.y & 1) ^ 1, (texel.x & 1) ^ 1);
-    texel = min(2 * texel + corner, max(size >> (l - 1), ivec2(1)) - 1);
-  }
-  return texel;
-}
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -231,7 +223,7 @@ void main() {
     // the rotated-grid texel copies (depth_pyramid.comp), not the tap's own
     // pixel. A depth put at the wrong pixel is a point off the surface, which
     // shades open floors seen at a grazing angle.
-    vec2 tap_centre = vec2(source_pixel(texel, level, size)) + 0.5;
+    vec2 tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
     float occlusion = 0.0;
     if (sao.method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
       ivec2 source = ivec2(tap_centre);
