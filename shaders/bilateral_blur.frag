@@ -21,6 +21,7 @@
 // The sources may be signed (the solid-angle AV, sao.frag): every weight is
 // non-negative, so the blur is a convex average and needs no clamp.
 #include "frame_constants.glsl"
+#include "pass_parameters.h"
 #include "gbuffer_encoding.glsl"
 #include "blur_kernel.glsl"
 
@@ -35,10 +36,9 @@ layout(binding = DEEPGI_UNIT_BLUR_SECOND_SOURCE) uniform sampler2D source1;
 layout(binding = DEEPGI_UNIT_BLUR_KEY) uniform sampler2D key;  // xyz: camera-space normal, w: linear depth
 
 layout(location = DEEPGI_UNIFORM_BLUR_DIRECTION) uniform ivec2 direction;
-// x: depth tolerance (fraction of the centre depth), y: normal power,
-// z: tangent-plane tolerance (fraction of the centre depth), w: world extent
-// (m; 0: no limit)
-layout(location = DEEPGI_UNIFORM_BLUR_PARAMETERS) uniform vec4 blur_parameters;
+layout(std140, binding = DEEPGI_UBO_PASS) uniform BlurBlock {
+  BlurParameters blur;
+};
 
 layout(location = 0) out vec4 out_value0;
 #if BLUR_SOURCES > 1
@@ -61,10 +61,10 @@ void main() {
     return;
   }
   // Tolerances scale with depth: a pixel covers more metres further away.
-  float depth_tolerance = blur_parameters.x * depth;
-  float normal_power = blur_parameters.y;
-  float plane_tolerance = blur_parameters.z * depth;
-  float world_extent = blur_parameters.w;
+  float depth_tolerance = blur.depth_tolerance * depth;
+  float normal_power = blur.normal_power;
+  float plane_tolerance = blur.plane_tolerance * depth;
+  float world_extent = blur.world_extent;
   // The floor keeps the inverse finite (GLSL leaves x / 0 undefined) when the
   // extent's square underflows.
   float inverse_extent_squared = world_extent > 0.0 ? 1.0 / max(world_extent * world_extent, 1.0e-30) : 0.0;

@@ -42,4 +42,12 @@ struct RadiosityPrepareParameters {
   float unused1;
 };
 
+// The bilateral blur (bilateral_blur.frag); docs/deep-sao.md, "bilateral blur".
+struct BlurParameters {
+  float depth_tolerance;  // depth difference, as a fraction of the centre's, that weighs nothing
+  float normal_power;     // weight * max(dot(n_tap, n_centre), 0)^power
+  float plane_tolerance;  // distance from the centre's tangent plane, the same fraction
+  float world_extent;     // m from the centre at which a tap weighs nothing (0: no limit)
+};
+
 #endif

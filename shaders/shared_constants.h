@@ -73,7 +73,6 @@
 #define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
-#define DEEPGI_UNIFORM_BLUR_PARAMETERS 24  // vec4: depth tolerance, normal power, plane tolerance, unused
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)

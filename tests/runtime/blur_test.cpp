@@ -459,7 +459,12 @@ TEST_CASE("blur: a blur of 0 or 3 sources, or with mismatched inputs, is refused
     CHECK_THROWS_AS(create_bilateral_blur(loader, 0), InputError);
     CHECK_THROWS_AS(create_bilateral_blur(loader, 3), InputError);
     BilateralBlur blur = create_bilateral_blur(loader, 2);
-    CHECK_THROWS_AS(resize_bilateral_blur(blur, 8, 8, GL_R16F), InputError);
+    const GLenum one_format[] = {GL_R16F};
+    CHECK_THROWS_AS(resize_bilateral_blur(blur, 8, 8, one_format), InputError);
+    const GLenum formats[] = {GL_R16F, GL_RGBA16F};
+    resize_bilateral_blur(blur, 8, 8, formats);
+    const GLuint one_source[] = {blur.key.get()};
+    CHECK_THROWS_AS(run_bilateral_blur(blur, one_source, 0, 0, 0), InputError);
 }
 
 }  // namespace

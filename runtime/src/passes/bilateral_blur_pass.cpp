@@ -38,48 +38,6 @@ gl::Framebuffer framebuffer_for_all(const gl::Texture* const* textures, int coun
     return framebuffer;
 }
 
-// Smooths the raw deep SAO visibility alone (the default frame uses BlurPass
-// below; benchmarks run this and radiosity_blur to compare).
-class AoBlurPass final : public Pass {
-public:
-    explicit AoBlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader)) {}
-
-    std::string_view name() const override { return "ao_blur"; }
-
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "ao.temporal"},
-                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
-                .writes = {"ao.blurred"}};
-    }
-
-    void resize(FrameResources& frame) override {
-        resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,
-                              GL_R16F);
-        label_texture(blur_.horizontal, name(), "horizontal");
-        label_texture(blur_.output, name(), "output");
-        label_texture(blur_.key, name(), "key");
-    }
-
-    void run(FrameResources& frame) override {
-        apply_blur_settings(blur_, *frame.settings);
-        run_bilateral_blur(blur_, frame.texture("ao.temporal"), frame.texture("depth_pyramid"),
-                           frame.texture("gbuffer.normal"), frame.empty_vertex_array);
-        frame.publish("ao.blurred", blur_.output.get());
-    }
-
-    std::vector<PassOutput> outputs(const FrameResources&) const override {
-        return {{.name = "ao-blurred",
-                 .texture = blur_.output.get(),
-                 .width = blur_.width,
-                 .height = blur_.height,
-                 .channels = 1}};
-    }
-
-private:
-    BilateralBlur blur_;
-};
-
 // Smooths the raw deep SAO visibility (R16F) and layer 0's filtered radiosity
 // E + confidence (RGBA16F) with one set of weights.
 class BlurPass final : public Pass {
@@ -158,11 +116,6 @@ BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count
     return blur;
 }
 
-BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
-                                    const BilateralBlurParameters& parameters) {
-    return create_bilateral_blur(loader, 1, parameters);
-}
-
 void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings) {
     // validate() has checked both factors when the renderer took the settings.
     blur.parameters = settings.blur;
@@ -189,10 +142,6 @@ void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
     blur.output_framebuffer = framebuffer_for_all(output, blur.source_count, "bilateral blur");
 }
 
-void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format) {
-    resize_bilateral_blur(blur, width, height, std::span<const GLenum>(&internal_format, 1));
-}
-
 void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sources,
                         GLuint depth_pyramid, GLuint gbuffer_normal, GLuint empty_vertex_array) {
     if (int(sources.size()) != blur.source_count)
@@ -208,9 +157,10 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
 
     const GLuint program = blur.program.get();
     glUseProgram(program);
-    glProgramUniform4f(program, DEEPGI_UNIFORM_BLUR_PARAMETERS, blur.parameters.depth_tolerance,
-                       blur.parameters.normal_power, blur.parameters.plane_tolerance,
-                       blur.world_extent);
+    blur.block.bind({.depth_tolerance = blur.parameters.depth_tolerance,
+                     .normal_power = blur.parameters.normal_power,
+                     .plane_tolerance = blur.parameters.plane_tolerance,
+                     .world_extent = blur.world_extent});
     glBindTextureUnit(DEEPGI_UNIT_BLUR_KEY, blur.key.get());
 
     for (int i = 0; i < blur.source_count; ++i)
@@ -225,16 +175,6 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
     glProgramUniform2i(program, DEEPGI_UNIFORM_BLUR_DIRECTION, 0, 1);
     begin_fullscreen(blur.output_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
-}
-
-void run_bilateral_blur(const BilateralBlur& blur, GLuint source, GLuint depth_pyramid,
-                        GLuint gbuffer_normal, GLuint empty_vertex_array) {
-    run_bilateral_blur(blur, std::span<const GLuint>(&source, 1), depth_pyramid, gbuffer_normal,
-                       empty_vertex_array);
-}
-
-std::unique_ptr<Pass> make_ao_blur_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<AoBlurPass>(loader);
 }
 
 std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene&) {

@@ -3,6 +3,7 @@
 // the pass classes themselves stay private to their files. frame.cpp lists
 // the factories in the order the passes run.
 #include "pass.hpp"
+#include "shader_shared.hpp"
 
 #include <span>
 
@@ -17,13 +18,10 @@ std::unique_ptr<Pass> make_backface_depth_pass(const ShaderLoader& loader, const
 std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_sao_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_ao_blur_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_ao_temporal_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_prepare_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_radiosity_blur_pass(const ShaderLoader& loader, const Scene& scene);
-// AO and layer 0's radiosity through one bilateral blur (replaces the two
-// passes above in the default list; they stay for comparison in benchmarks).
+// AO and layer 0's radiosity through one bilateral blur.
 std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_tonemap_pass(const ShaderLoader& loader, const Scene& scene);
@@ -54,6 +52,7 @@ struct BilateralBlur {
     // Metres: a tap this far from the centre weighs nothing (0: no limit).
     // The settings give it as a fraction of the AO radius (BlurSettings::extent).
     float world_extent = 0.0f;
+    ParameterBlock<shader_shared::BlurParameters> block;  // the above, as the shader reads them
 };
 // Takes the settings' edge weights and world extent (read every frame, so the
 // window's sliders act without a rebuild); the settings are validated ones.
@@ -62,19 +61,14 @@ void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings);
 // for bad parameters.
 BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count,
                                     const BilateralBlurParameters& parameters = {});
-BilateralBlur create_bilateral_blur(const ShaderLoader& loader,
-                                    const BilateralBlurParameters& parameters = {});
 // One internal format per source: what the source holds (GL_R16F for AO,
 // signed, GL_RGBA16F for radiosity); the blur itself does not care, as long
 // as the format is float (a linear average of signed values).
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height,
                            std::span<const GLenum> internal_formats);
-void resize_bilateral_blur(BilateralBlur& blur, int width, int height, GLenum internal_format);
 // Keys: layer 0 of the depth pyramid (level 0, R) and of the G-buffer normal.
 // One source texture per source, in order.
 void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sources,
                         GLuint depth_pyramid, GLuint gbuffer_normal, GLuint empty_vertex_array);
-void run_bilateral_blur(const BilateralBlur& blur, GLuint source, GLuint depth_pyramid,
-                        GLuint gbuffer_normal, GLuint empty_vertex_array);
 
 }  // namespace deepgi

@@ -144,60 +144,10 @@ private:
     int height_ = 0;
 };
 
-// Smooths layer 0's E and confidence with the AO's bilateral blur.
-class RadiosityBlurPass final : public Pass {
-public:
-    explicit RadiosityBlurPass(const ShaderLoader& loader) : blur_(create_bilateral_blur(loader)) {}
-
-    std::string_view name() const override { return "radiosity_blur"; }
-
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "radiosity.irradiance.layer0"},
-                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
-                .writes = {"radiosity.blurred"}};
-    }
-
-    void resize(FrameResources& frame) override {
-        resize_bilateral_blur(blur_, frame.layout.internal_width, frame.layout.internal_height,
-                              GL_RGBA16F);
-        label_texture(blur_.horizontal, name(), "horizontal");
-        label_texture(blur_.output, name(), "output");
-    }
-
-    void run(FrameResources& frame) override {
-        apply_blur_settings(blur_, *frame.settings);
-        run_bilateral_blur(blur_, frame.texture("radiosity.irradiance.layer0"),
-                           frame.texture("depth_pyramid"), frame.texture("gbuffer.normal"),
-                           frame.empty_vertex_array);
-        frame.publish("radiosity.blurred", blur_.output.get());
-    }
-
-    std::vector<PassOutput> outputs(const FrameResources&) const override {
-        return {{.name = "radiosity-blurred",
-                 .texture = blur_.output.get(),
-                 .width = blur_.width,
-                 .height = blur_.height},
-                {.name = "radiosity-blurred-confidence",
-                 .texture = blur_.output.get(),
-                 .width = blur_.width,
-                 .height = blur_.height,
-                 .channels = 1,
-                 .decode = OutputDecode::alpha}};
-    }
-
-private:
-    BilateralBlur blur_;
-};
-
 }  // namespace
 
 std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene&) {
     return std::make_unique<RadiosityPass>(loader);
-}
-
-std::unique_ptr<Pass> make_radiosity_blur_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<RadiosityBlurPass>(loader);
 }
 
 }  // namespace deepgi

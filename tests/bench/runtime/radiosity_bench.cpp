@@ -3,7 +3,7 @@
 // Per scene, two renderers at the same size: the default frame (every pass
 // on, two radiosity layers, the AO and the radiosity E through one shared
 // bilateral blur), and the same with one radiosity layer (the paper's 1-vs-2
-// layer ratio). blur_bench times the blur alone against separate blurs.
+// layer ratio).
 // Every pass is timed with a CPU clock around glFinish (--timing gpu for GL
 // timer queries on a GPU); medians of --frames frames after --warmup frames
 // under the scene's default (static) camera, the two renderers taking turns
