@@ -21,7 +21,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -65,19 +64,6 @@ struct Options {
     std::string screenshot_directory = ".";  // window: where F12 writes
 };
 
-// Only the format; the range is checked with every other setting by
-// deepgi::validate().
-void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
-    static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-    std::smatch match;
-    if (!std::regex_match(text, match, pattern)) {
-        throw deepgi::InputError(
-            fmt::format("--size '{}' is not WIDTHxHEIGHT (for example 1280x720)", text));
-    }
-    settings.width = std::stoi(match[1].str());
-    settings.height = std::stoi(match[2].str());
-}
-
 void check_output_path(const fs::path& output) {
     std::string extension = output.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -97,7 +83,9 @@ void check_output_path(const fs::path& output) {
 // Parses text into settings; every check is deepgi::validate()'s.
 deepgi::RenderSettings settings_from(const Options& options) {
     deepgi::RenderSettings settings;
-    parse_size(options.size, settings);
+    const deepgi::ImageSize size = deepgi::parse_size("--size", options.size);
+    settings.width = size.width;
+    settings.height = size.height;
     settings.generator = deepgi::parse_generator("--generator", options.generator);
     settings.view = deepgi::parse_debug_view("--view", options.view);
     settings.timing = deepgi::parse_timing_mode("--timing", options.timing);

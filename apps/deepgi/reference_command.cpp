@@ -6,6 +6,7 @@
 
 #include "command_line.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/settings.hpp"
 #include "deepgi/reference.hpp"
 
 #include <CLI/CLI.hpp>
@@ -17,7 +18,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -46,21 +46,11 @@ struct ReferenceOptions {
     double irradiance_target_error = 0.01;
 };
 
-void parse_size(const std::string& text, deepgi::RenderSettings& settings) {
-    static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-    std::smatch match;
-    if (!std::regex_match(text, match, pattern))
-        throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT", text));
-    settings.width = std::stoi(match[1].str());
-    settings.height = std::stoi(match[2].str());
-    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
-        settings.height > 16384)
-        throw deepgi::InputError(fmt::format("--size {} is out of range (1 to 16384)", text));
-}
-
 int run(const ReferenceOptions& options) {
     deepgi::ReferenceSettings settings;
-    parse_size(options.size, settings.render);
+    const deepgi::ImageSize size = deepgi::parse_size("--size", options.size);
+    settings.render.width = size.width;
+    settings.render.height = size.height;
     if (options.output.empty()) throw deepgi::InputError("reference needs --output DIR");
     if (options.rays < 1) throw deepgi::InputError("--rays must be at least 1");
     if (!(options.radius > 0.0f) || !std::isfinite(options.radius))

@@ -6,6 +6,7 @@
 #include "deepgi/context.hpp"
 #include "command_line.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/settings.hpp"
 #include "deepgi/report.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,7 +16,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -50,12 +50,9 @@ int run_plot_script(const std::string& python, const std::string& script,
 }
 
 int run(CommandOptions& options) {
-    static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-    std::smatch match;
-    if (!std::regex_match(options.size, match, pattern))
-        throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT", options.size));
-    options.report.width = std::stoi(match[1].str());
-    options.report.height = std::stoi(match[2].str());
+    const deepgi::ImageSize size = deepgi::parse_size("--size", options.size);
+    options.report.width = size.width;
+    options.report.height = size.height;
     options.report.output = options.output;
     deepgi::report::validate(options.report);
     if (options.plots && access(options.plot_script.c_str(), R_OK) != 0)

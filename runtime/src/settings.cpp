@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 
 namespace deepgi {
 
@@ -111,6 +112,31 @@ AoMethod parse_ao_method(std::string_view option, std::string_view text) {
 }
 RadiosityMethod parse_radiosity_method(std::string_view option, std::string_view text) {
     return parse_or_throw<RadiosityMethod>(option, text);
+}
+
+ImageSize parse_size(std::string_view option, std::string_view text) {
+    // Digits, 'x', digits: no sign, no spaces, no other base (from_chars
+    // accepts none of them for an int).
+    const std::size_t cross = text.find('x');
+    ImageSize size;
+    auto parse_side = [](std::string_view digits, int& side) {
+        if (digits.empty() || digits.size() > 5) return false;
+        for (char c : digits)
+            if (c < '0' || c > '9') return false;
+        side = std::stoi(std::string(digits));
+        return true;
+    };
+    if (cross == std::string_view::npos || !parse_side(text.substr(0, cross), size.width) ||
+        !parse_side(text.substr(cross + 1), size.height)) {
+        throw InputError(
+            fmt::format("{} '{}' is not WIDTHxHEIGHT (for example 1280x720)", option, text));
+    }
+    if (size.width < 1 || size.height < 1 || size.width > limits::max_image_side ||
+        size.height > limits::max_image_side) {
+        throw InputError(fmt::format("{} {}x{} is out of range (1 to {} per side)", option,
+                                     size.width, size.height, limits::max_image_side));
+    }
+    return size;
 }
 
 void validate(const RenderSettings& settings) {

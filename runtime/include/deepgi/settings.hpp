@@ -212,6 +212,16 @@ struct RenderSettings {
     BlurSettings blur;  // one blur filters AO and radiosity E with the same weights
 };
 
+// An image size given as WIDTHxHEIGHT, each side 1 to limits::max_image_side.
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+// The one parser of WIDTHxHEIGHT for every command and benchmark; throws
+// InputError naming `option` (e.g. "--size") for a malformed or out-of-range
+// size.
+ImageSize parse_size(std::string_view option, std::string_view text);
+
 // Every check of every setting, enum values included; throws InputError with
 // one line naming the setting by its command-line option.
 void validate(const RenderSettings& settings);
