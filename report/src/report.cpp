@@ -282,54 +282,63 @@ ErrorStats compare_images(const FloatImage& estimate, const FloatImage& truth,
     return stats;
 }
 
+// The frame's passes the report times, by the names the frame's timer gives
+// them; each becomes the column "<pass>_ms". A name the frame does not time
+// stops the report where a row is filled rather than leaving a column empty.
+const std::vector<std::string>& timed_passes() {
+    static const std::vector<std::string> passes = {"sao", "blur", "radiosity"};
+    return passes;
+}
+
 const std::vector<std::string>& value_columns() {
-    static const std::vector<std::string> columns = {
-        "discrepancy",
-        "turns",
-        "sao_ms",
-        "ao_blur_ms",
-        "radiosity_ms",
-        "conv_raw_mae",
-        "conv_raw_rmse",
-        "conv_blur_mae",
-        "conv_blur_rmse",
-        "ref_raw_mae",
-        "ref_raw_rmse",
-        "ref_raw_bias",
-        "ref_blur_mae",
-        "ref_blur_rmse",
-        "ref_blur_bias",
-        "ref_temporal_mae",
-        "ref_temporal_rmse",
-        "ref_temporal_bias",
-        "ref_accum_mae",
-        "ref_accum_rmse",
-        "ref_accum_bias",
-        "ref_pixels",
-        "ref_open_pixels",
-        "ref_open_raw_below",
-        "ref_open_blur_below",
-        "ref_open_accum_below",
-        "ref_open_core_raw_below",
-        "ref_open_core_blur_below",
-        "ref_open_core_accum_below",
-        "rad_conv_raw_rel_mae",
-        "rad_conv_raw_rel_rmse",
-        "rad_conv_blur_rel_mae",
-        "rad_conv_blur_rel_rmse",
-        "rad_ref_raw_rel_mae",
-        "rad_ref_raw_rel_rmse",
-        "rad_ref_raw_rel_bias",
-        "rad_ref_blur_rel_mae",
-        "rad_ref_blur_rel_rmse",
-        "rad_ref_blur_rel_bias",
-        "rad_ref_temporal_rel_mae",
-        "rad_ref_temporal_rel_rmse",
-        "rad_ref_temporal_rel_bias",
-        "rad_ref_accum_rel_mae",
-        "rad_ref_accum_rel_rmse",
-        "rad_ref_accum_rel_bias",
-    };
+    static const std::vector<std::string> columns = [] {
+        std::vector<std::string> names = {"discrepancy", "turns"};
+        for (const auto& pass : timed_passes()) names.push_back(pass + "_ms");
+        for (const char* name : {
+                 "conv_raw_mae",
+                 "conv_raw_rmse",
+                 "conv_blur_mae",
+                 "conv_blur_rmse",
+                 "ref_raw_mae",
+                 "ref_raw_rmse",
+                 "ref_raw_bias",
+                 "ref_blur_mae",
+                 "ref_blur_rmse",
+                 "ref_blur_bias",
+                 "ref_temporal_mae",
+                 "ref_temporal_rmse",
+                 "ref_temporal_bias",
+                 "ref_accum_mae",
+                 "ref_accum_rmse",
+                 "ref_accum_bias",
+                 "ref_pixels",
+                 "ref_open_pixels",
+                 "ref_open_raw_below",
+                 "ref_open_blur_below",
+                 "ref_open_accum_below",
+                 "ref_open_core_raw_below",
+                 "ref_open_core_blur_below",
+                 "ref_open_core_accum_below",
+                 "rad_conv_raw_rel_mae",
+                 "rad_conv_raw_rel_rmse",
+                 "rad_conv_blur_rel_mae",
+                 "rad_conv_blur_rel_rmse",
+                 "rad_ref_raw_rel_mae",
+                 "rad_ref_raw_rel_rmse",
+                 "rad_ref_raw_rel_bias",
+                 "rad_ref_blur_rel_mae",
+                 "rad_ref_blur_rel_rmse",
+                 "rad_ref_blur_rel_bias",
+                 "rad_ref_temporal_rel_mae",
+                 "rad_ref_temporal_rel_rmse",
+                 "rad_ref_temporal_rel_bias",
+                 "rad_ref_accum_rel_mae",
+                 "rad_ref_accum_rel_rmse",
+                 "rad_ref_accum_rel_bias",
+             })
+            names.push_back(name);
+        return names;
+    }();
     return columns;
 }
 
@@ -747,9 +756,13 @@ ReportResult run_report(const ReportOptions& options) {
                         };
                         add("discrepancy", discrepancy);
                         add("turns", turns.value());
-                        add("sao_ms", ms("sao"));
-                        add("ao_blur_ms", ms("ao_blur"));
-                        add("radiosity_ms", ms("radiosity"));
+                        for (const auto& pass : timed_passes()) {
+                            if (samples.find(pass) == samples.end())
+                                throw std::runtime_error(
+                                    fmt::format("the frame timed no pass named '{}' (column {}_ms)",
+                                                pass, pass));
+                            add(pass + "_ms", ms(pass));
+                        }
                         auto if_gathers = [&](double value) -> std::optional<double> {
                             if (!gathers_taps) return std::nullopt;
                             return value;
