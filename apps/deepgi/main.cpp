@@ -38,12 +38,13 @@ struct Options {
     int frames = 1;
     std::string output;
     std::string generator = "peel";
-    float min_separation = 0.5f;
-    float exposure = 1.0f;
-    float guard_band = 0.1f;
     std::string view = "final";
     std::string dump;
     bool ao_bias_given = false;
+    // One value per row of deepgi::numeric_settings(), in table order; only
+    // the options given on the command line are applied.
+    std::vector<double> numeric;
+    std::vector<bool> numeric_given;
     std::string timing = "auto";
     bool camera_path = false;
     std::string camera;  // a file camera's name or index; empty for the scene's default
@@ -52,14 +53,10 @@ struct Options {
     bool no_ao = false;
     bool no_radiosity = false;
     bool no_environment = false;
-    deepgi::AoSettings ao;
-    deepgi::RadiositySettings radiosity;
-    deepgi::BlurSettings blur;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::string radiosity_method{deepgi::to_string(deepgi::RadiositySettings{}.method)};
-    std::vector<std::string> scene_limits;  // NAME=VALUE, see docs/hardening.md
-    std::uint64_t max_gpu_mib = 4096;       // render-target estimate limit
-    int shadow_map_size = deepgi::RenderSettings{}.shadow_map_size;
+    std::vector<std::string> scene_limits;   // NAME=VALUE, see docs/hardening.md
+    std::uint64_t max_gpu_mib = 4096;        // render-target estimate limit
     std::string script;                      // window: --script FILE
     std::string screenshot_directory = ".";  // window: where F12 writes
 };
@@ -89,18 +86,23 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.generator = deepgi::parse_generator("--generator", options.generator);
     settings.view = deepgi::parse_debug_view("--view", options.view);
     settings.timing = deepgi::parse_timing_mode("--timing", options.timing);
-    settings.min_separation = options.min_separation;
-    settings.exposure = options.exposure;
-    settings.guard_band_fraction = options.guard_band;
-    settings.ao = options.ao;
-    settings.radiosity = options.radiosity;
-    settings.blur = options.blur;
+    const auto rows = deepgi::numeric_settings();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!options.numeric_given[i]) continue;
+        // Checked here, before the float conversion could round 2.5 to 2
+        // or 1e40 to infinity's neighbour.
+        const double value = options.numeric[i];
+        if (rows[i].integer && value != std::round(value))
+            throw deepgi::InputError(fmt::format("--{} must be {}, got {}", rows[i].name,
+                                                 deepgi::describe_limits(rows[i]), value));
+        deepgi::check_setting(rows[i], float(value));
+        rows[i].set(settings, float(value));
+    }
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
     settings.radiosity.method =
         deepgi::parse_radiosity_method("--radiosity-method", options.radiosity_method);
     settings.gl_debug = options.gl_debug;
-    settings.shadow_map_size = options.shadow_map_size;
     settings.ao.enabled = !options.no_ao;
     settings.radiosity.enabled = !options.no_radiosity;
     settings.environment = !options.no_environment;
@@ -198,12 +200,6 @@ int main(int argc, char** argv) {
     app.add_option("--output", options.output, "PNG file to write (headless)");
     app.add_option("--generator", options.generator,
                    "Deep G-buffer generator: " + deepgi::enum_name_list<deepgi::Generator>());
-    app.add_option("--min-separation", options.min_separation,
-                   "Minimum camera-space distance of layer 1 behind layer 0 (m)");
-    app.add_option("--exposure", options.exposure, "Exposure multiplier before the tonemap");
-    app.add_option("--guard-band", options.guard_band,
-                   fmt::format("Guard band on every side, as a fraction of the height (0 to {})",
-                               deepgi::limits::max_guard_band_fraction));
     app.add_option("--view", options.view,
                    "Image to show: " + deepgi::enum_name_list<deepgi::DebugView>());
     app.add_option("--dump", options.dump,
@@ -218,10 +214,6 @@ int main(int argc, char** argv) {
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
                  "Print the last frame's per-pass milliseconds");
-    app.add_option(
-        "--shadow-map-size", options.shadow_map_size,
-        fmt::format("Shadow map side in pixels ({} to {})", deepgi::limits::min_shadow_map_size,
-                    deepgi::limits::max_shadow_map_size));
     app.add_option("--script", options.script,
                    "Window only: run the window from a script of per-frame commands (set, key, "
                    "screenshot, drop, quit; docs/deepgi.md)");
@@ -237,10 +229,6 @@ int main(int argc, char** argv) {
                  "Compose without the environment term (with --no-radiosity --no-ao: direct "
                  "light and emissive only)");
     // Deep SAO (docs/deep-sao.md).
-    app.add_option("--ao-layers", options.ao.layers,
-                   fmt::format("Deep SAO: G-buffer layers the taps test, 1 to {}",
-                               deepgi::limits::max_ao_layers))
-        ->capture_default_str();
     app.add_option("--ao-method", options.ao_method,
                    fmt::format("Deep SAO estimator: {} (march casts the reference's rays "
                                "through the solids behind both layers; solid-angle is the "
@@ -248,77 +236,38 @@ int main(int argc, char** argv) {
                                "about 5x cheaper; published is 1 - sqrt(...))",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
-    app.add_option("--ao-radius", options.ao.radius, "Deep SAO: world-space gather radius (m)")
-        ->capture_default_str();
-    auto* ao_bias = app.add_option(
-        "--ao-bias", options.ao.bias,
-        fmt::format("Deep SAO: occluders closer than this to the tangent plane are ignored (m); "
-                    "default {} with march and solid-angle, {} with published",
-                    deepgi::default_ao_bias(deepgi::AoMethod::march),
-                    deepgi::default_ao_bias(deepgi::AoMethod::published)));
-    app.add_option("--ao-intensity", options.ao.intensity, "Deep SAO: exponent on the visibility")
-        ->capture_default_str();
-    app.add_option("--ao-thickness", options.ao.thickness,
-                   "Deep SAO, march: the scene is taken as solid this deep behind a stored "
-                   "surface with no back face behind it (m)")
-        ->capture_default_str();
-    app.add_option("--ao-q", options.ao.q,
-                   fmt::format("Deep SAO: tap radius (px) per MIP level step (at least {})",
-                               deepgi::limits::min_ao_q))
-        ->capture_default_str();
-    app.add_option("--ao-max-mip", options.ao.max_mip_level,
-                   fmt::format("Deep SAO: deepest depth-pyramid level (0 to {})",
-                               deepgi::limits::max_ao_mip_level))
-        ->capture_default_str();
 
     // Deep radiosity (docs/radiosity.md).
-    app.add_option("--radiosity-radius", options.radiosity.radius,
-                   "Deep radiosity: world-space gather radius (m)")
-        ->capture_default_str();
     app.add_option("--radiosity-method", options.radiosity_method,
                    fmt::format("Deep radiosity estimator: {} (area is the reference's "
                                "irradiance integral, published is 2 pi / M * sum B cos)",
                                deepgi::enum_name_list<deepgi::RadiosityMethod>()))
         ->capture_default_str();
-    app.add_option("--radiosity-boost", options.radiosity.boost,
-                   "Deep radiosity: colour boost in [0, 1] (0: energy conserving)")
-        ->capture_default_str();
-    app.add_option("--radiosity-clamp", options.radiosity.tap_clamp,
-                   "Deep radiosity: largest contribution of one sample, per channel")
-        ->capture_default_str();
-    app.add_option("--rho-prop", options.radiosity.rho_prop,
-                   "Deep radiosity: share of last frame's indirect light in the next gather, "
-                   "[0, 1] (multiple bounces)")
-        ->capture_default_str();
-    app.add_option("--ao-alpha", options.ao.alpha,
-                   "AO temporal filter's history weight across rotation cycles in [0, 1) (0: raw "
-                   "SAO of each frame)")
-        ->capture_default_str();
-    app.add_option("--radiosity-alpha", options.radiosity.alpha,
-                   "Deep radiosity: temporal filter's history weight in [0, 1) (0: raw gather)")
-        ->capture_default_str();
-    // The bilateral blur shared by AO and radiosity (docs/deep-sao.md).
-    app.add_option("--blur-depth-tolerance", options.blur.depth_tolerance,
-                   "Blur: relative depth difference at which a tap weighs nothing")
-        ->capture_default_str();
-    app.add_option("--blur-normal-power", options.blur.normal_power,
-                   "Blur: exponent on the normal agreement max(dot(n_tap, n_centre), 0)")
-        ->capture_default_str();
-    app.add_option("--blur-plane-tolerance", options.blur.plane_tolerance,
-                   "Blur: distance (m) from the centre's tangent plane at which a tap weighs "
-                   "nothing")
-        ->capture_default_str();
-    app.add_option("--blur-extent", options.blur.extent,
-                   "Blur: world-space reach as a fraction of the AO radius; a tap that far from "
-                   "the centre weighs nothing (0: no limit)")
-        ->capture_default_str();
-    app.add_option("--radiosity-layers", options.radiosity.layers,
-                   fmt::format("Deep radiosity: G-buffer layers gathered, 1 to {}",
-                               deepgi::limits::max_radiosity_layers))
-        ->capture_default_str();
 
+    // Every numeric setting from its row: help, unit, limits and default.
+    {
+        const deepgi::RenderSettings defaults;
+        const auto rows = deepgi::numeric_settings();
+        options.numeric.resize(rows.size());
+        options.numeric_given.assign(rows.size(), false);
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const deepgi::NumericSetting& row = rows[i];
+            options.numeric[i] = row.get(defaults);
+            app.add_option(fmt::format("--{}", row.name), options.numeric[i],
+                           fmt::format("{} ({})", row.help, deepgi::describe_limits(row)))
+                ->type_name(row.integer ? "INT" : "FLOAT")
+                ->default_str(fmt::format("{}", row.get(defaults)))
+                ->group(row.group == "frame"       ? "Frame"
+                        : row.group == "ao"        ? "Deep SAO"
+                        : row.group == "radiosity" ? "Deep radiosity"
+                                                   : "Bilateral blur");
+        }
+    }
     if (const auto status = parse_command_line(app, argc, argv, "deepgi")) return *status;
-    options.ao_bias_given = ao_bias->count() > 0;
+    options.ao_bias_given = app.count("--ao-bias") > 0;
+    for (std::size_t i = 0; i < options.numeric.size(); ++i)
+        options.numeric_given[i] =
+            app.count(fmt::format("--{}", deepgi::numeric_settings()[i].name)) > 0;
 
     return run_reporting_errors("deepgi", [&] {
         const deepgi::RenderSettings settings = settings_from(options);
@@ -338,7 +287,8 @@ int main(int argc, char** argv) {
                 headless_only += std::string(headless_only.empty() ? "" : ", ") + name;
         if (!headless_only.empty())
             throw deepgi::InputError(
-                fmt::format("{} only apply with --headless (leaving out --headless opens a window)",
+                fmt::format("{} only apply with --headless (leaving out --headless "
+                            "opens a window)",
                             headless_only));
         deepgi::WindowOptions window;
         window.scene = options.scene;

@@ -289,32 +289,40 @@ void Renderer::render(const Camera& camera, CameraMotion motion) {
 void Renderer::set_settings(const RenderSettings& settings) {
     validate(settings);
     RendererState& state = *state_;
+    // A new internal size (viewport or guard band) leaves no history to keep.
     const bool resized = settings.width != state.settings.width ||
                          settings.height != state.settings.height ||
                          settings.guard_band_fraction != state.settings.guard_band_fraction;
-    const bool reallocate = resized || settings.shadow_map_size != state.settings.shadow_map_size ||
-                            settings.ao.max_mip_level != state.settings.ao.max_mip_level;
+    bool reallocate = resized;
+    bool invalidate = resized;
+    std::string reason = fmt::format("resize to {}x{}, guard band {}", settings.width,
+                                     settings.height, settings.guard_band_fraction);
+    // Beyond that, what a change costs comes from each setting's row.
+    for (const NumericSetting& row : numeric_settings()) {
+        if (row.effect == SettingEffect::none || row.get(settings) == row.get(state.settings))
+            continue;
+        reallocate = reallocate || row.effect == SettingEffect::reallocate;
+        if (row.effect == SettingEffect::drop_history && !invalidate) {
+            invalidate = true;
+            reason = fmt::format("{} {} changed to {}", row.group, row.label, row.get(settings));
+        }
+    }
     const bool retime = settings.timing != state.settings.timing;
-    const bool layers_changed = settings.radiosity.layers != state.settings.radiosity.layers;
     // The estimators' E and confidence mean different things (docs/radiosity.md):
     // history of one would take cycles to fade from the other.
     const bool method_changed = settings.radiosity.method != state.settings.radiosity.method;
+    if (method_changed && !invalidate) {
+        invalidate = true;
+        reason =
+            fmt::format("radiosity method changed to {}", to_string(settings.radiosity.method));
+    }
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).
     check_pass_declarations(state.passes, settings);
     state.settings = settings;
     if (reallocate) resize_passes(state);
-    if (resized) {
-        state.frame.invalidate_history(fmt::format("resize to {}x{}, guard band {}", settings.width,
-                                                   settings.height, settings.guard_band_fraction));
-    } else if (layers_changed) {
-        state.frame.invalidate_history(
-            fmt::format("radiosity layers changed to {}", settings.radiosity.layers));
-    } else if (method_changed) {
-        state.frame.invalidate_history(
-            fmt::format("radiosity method changed to {}", to_string(settings.radiosity.method)));
-    }
+    if (invalidate) state.frame.invalidate_history(reason);
     if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));
 }
 

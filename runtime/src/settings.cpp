@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace deepgi {
@@ -71,13 +72,6 @@ void check_enum(std::string_view option, Enum value) {
         throw InputError(fmt::format("{} value {} is not one of {}", option,
                                      static_cast<int>(value), enum_name_list<Enum>()));
     }
-}
-
-bool finite_at_least(float value, float minimum) {
-    return std::isfinite(value) && value >= minimum;
-}
-bool finite_positive(float value) {
-    return std::isfinite(value) && value > 0.0f;
 }
 
 }  // namespace
@@ -145,127 +139,296 @@ void validate(const RenderSettings& settings) {
         throw InputError(fmt::format("--size {}x{} is out of range (1 to {} per side)",
                                      settings.width, settings.height, limits::max_image_side));
     }
-    if (!(settings.guard_band_fraction >= 0.0f &&
-          settings.guard_band_fraction <= limits::max_guard_band_fraction)) {
-        throw InputError(
-            fmt::format("--guard-band must be in [0, {}]", limits::max_guard_band_fraction));
-    }
     check_enum("--generator", settings.generator);
     check_enum("--view", settings.view);
     check_enum("--timing", settings.timing);
     check_enum("--ao-method", settings.ao.method);
     check_enum("--radiosity-method", settings.radiosity.method);
-    if (!finite_at_least(settings.min_separation, 0.0f))
-        throw InputError("--min-separation must be a finite number of metres >= 0");
-    if (!finite_positive(settings.exposure))
-        throw InputError("--exposure must be a finite number > 0");
-    if (settings.shadow_map_size < limits::min_shadow_map_size ||
-        settings.shadow_map_size > limits::max_shadow_map_size) {
-        throw InputError(fmt::format("shadow map size must be in [{}, {}]",
-                                     limits::min_shadow_map_size, limits::max_shadow_map_size));
-    }
-    const AoSettings& ao = settings.ao;
-    if (!finite_positive(ao.radius))
-        throw InputError("--ao-radius must be a finite number of metres > 0");
-    if (!finite_at_least(ao.bias, 0.0f))
-        throw InputError("--ao-bias must be a finite number of metres >= 0");
-    if (!finite_positive(ao.intensity))
-        throw InputError("--ao-intensity must be a finite number > 0");
-    if (!finite_at_least(ao.q, limits::min_ao_q))
-        throw InputError(
-            fmt::format("--ao-q must be a finite number of pixels >= {}", limits::min_ao_q));
-    if (ao.layers < 1 || ao.layers > limits::max_ao_layers) {
-        throw InputError(
-            fmt::format("--ao-layers must be 1 or {}, got {}", limits::max_ao_layers, ao.layers));
-    }
-    if (!finite_positive(ao.thickness))
-        throw InputError("--ao-thickness must be a finite number of metres > 0");
-    if (ao.max_mip_level < 0 || ao.max_mip_level > limits::max_ao_mip_level) {
-        throw InputError(fmt::format("--ao-max-mip must be in [0, {}], got {}",
-                                     limits::max_ao_mip_level, ao.max_mip_level));
-    }
-    const RadiositySettings& radiosity = settings.radiosity;
-    auto unit_interval = [](float value) {
-        return std::isfinite(value) && value >= 0.0f && value <= 1.0f;
-    };
-    if (!finite_positive(radiosity.radius))
-        throw InputError("--radiosity-radius must be a finite number of metres > 0");
-    if (!unit_interval(radiosity.boost))
-        throw InputError("--radiosity-boost must be a number in [0, 1]");
-    if (!finite_positive(radiosity.tap_clamp))
-        throw InputError("--radiosity-clamp must be a finite number > 0");
-    if (!std::isfinite(settings.ao.alpha) || settings.ao.alpha < 0.0f || settings.ao.alpha >= 1.0f)
-        throw InputError("--ao-alpha must be a number in [0, 1)");
-    if (!std::isfinite(radiosity.alpha) || radiosity.alpha < 0.0f || radiosity.alpha >= 1.0f)
-        throw InputError("--radiosity-alpha must be a number in [0, 1)");
-    const BlurSettings& blur = settings.blur;
-    if (!finite_positive(blur.depth_tolerance))
-        throw InputError("--blur-depth-tolerance must be a finite number > 0");
-    if (!finite_positive(blur.normal_power))
-        throw InputError("--blur-normal-power must be a finite number > 0");
-    if (!finite_positive(blur.plane_tolerance))
-        throw InputError("--blur-plane-tolerance must be a finite number > 0");
-    if (!std::isfinite(blur.extent) || blur.extent < 0.0f)
-        throw InputError("--blur-extent must be a finite number >= 0");
-    if (!unit_interval(radiosity.rho_prop))
-        throw InputError("--rho-prop must be a number in [0, 1]");
-    if (radiosity.layers < 1 || radiosity.layers > limits::max_radiosity_layers) {
-        throw InputError(fmt::format("--radiosity-layers must be 1 or {}, got {}",
-                                     limits::max_radiosity_layers, radiosity.layers));
-    }
+    // Every numeric setting from its row, in panel order.
+    for (const NumericSetting& setting : numeric_settings())
+        check_setting(setting, setting.get(settings));
 }
 
 namespace {
 
 // A float field's accessors, as plain function pointers for the table.
-#define DEEPGI_FLOAT_FIELD(member)                           \
-    [](const RenderSettings& s) { return float(s.member); }, \
-        [](RenderSettings& s, float value) { s.member = value; }
-#define DEEPGI_INT_FIELD(member)                             \
-    [](const RenderSettings& s) { return float(s.member); }, \
-        [](RenderSettings& s, float value) { s.member = int(std::lround(value)); }
+#define DEEPGI_FLOAT_FIELD(member)                                  \
+    .get = [](const RenderSettings& s) { return float(s.member); }, \
+    .set = [](RenderSettings& s, float value) { s.member = value; }
+#define DEEPGI_INT_FIELD(member)                                    \
+    .get = [](const RenderSettings& s) { return float(s.member); }, \
+    .set = [](RenderSettings& s, float value) { s.member = int(std::lround(value)); }
 
-// Slider ranges sit inside validate()'s limits; where validate() has no upper
-// limit the slider stops at what is still useful in the built-in scenes.
+constexpr float unlimited = std::numeric_limits<float>::infinity();
+constexpr SettingEffect reallocate = SettingEffect::reallocate;
+constexpr SettingEffect drop_history = SettingEffect::drop_history;
+
+// One row per numeric setting. Slider ranges sit inside the limits; where a
+// setting has no upper limit the slider stops at what is still useful in the
+// built-in scenes.
 const std::array<NumericSetting, 22> numeric_table = {{
-    {"min-separation", "min separation (m)", "frame", false, 0.0f, 2.0f, false,
+    {.name = "min-separation",
+     .label = "min separation (m)",
+     .group = "frame",
+     .owner = "gbuffer",
+     .help = "Minimum camera-space distance of layer 1 behind layer 0",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .maximum = unlimited,
+     .slider_min = 0.0f,
+     .slider_max = 2.0f,
      DEEPGI_FLOAT_FIELD(min_separation)},
-    {"exposure", "exposure", "frame", false, 0.05f, 8.0f, true, DEEPGI_FLOAT_FIELD(exposure)},
-    {"guard-band", "guard band (* height)", "frame", false, 0.0f, limits::max_guard_band_fraction,
-     false, DEEPGI_FLOAT_FIELD(guard_band_fraction)},
-    {"shadow-map-size", "shadow map size (px)", "frame", true, float(limits::min_shadow_map_size),
-     4096.0f, true, DEEPGI_INT_FIELD(shadow_map_size)},
-    {"ao-radius", "radius (m)", "ao", false, 0.01f, 10.0f, true, DEEPGI_FLOAT_FIELD(ao.radius)},
-    {"ao-bias", "bias (m)", "ao", false, 0.0f, 0.5f, false, DEEPGI_FLOAT_FIELD(ao.bias)},
-    {"ao-intensity", "intensity", "ao", false, 0.1f, 8.0f, true, DEEPGI_FLOAT_FIELD(ao.intensity)},
-    {"ao-q", "q (px per MIP)", "ao", false, limits::min_ao_q, 64.0f, true,
+    {.name = "exposure",
+     .label = "exposure",
+     .group = "frame",
+     .owner = "tonemap",
+     .help = "Exposure multiplier before the tonemap",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.05f,
+     .slider_max = 8.0f,
+     .logarithmic = true,
+     DEEPGI_FLOAT_FIELD(exposure)},
+    {.name = "guard-band",
+     .label = "guard band (* height)",
+     .group = "frame",
+     .owner = "frame",
+     .help = "Guard band on every side, as a fraction of the height",
+     .minimum = 0.0f,
+     .maximum = limits::max_guard_band_fraction,
+     .slider_min = 0.0f,
+     .slider_max = limits::max_guard_band_fraction,
+     .effect = reallocate,
+     DEEPGI_FLOAT_FIELD(guard_band_fraction)},
+    {.name = "shadow-map-size",
+     .label = "shadow map size (px)",
+     .group = "frame",
+     .owner = "shadow",
+     .help = "Shadow map side",
+     .unit = "pixels",
+     .integer = true,
+     .minimum = float(limits::min_shadow_map_size),
+     .maximum = float(limits::max_shadow_map_size),
+     .slider_min = float(limits::min_shadow_map_size),
+     .slider_max = 4096.0f,
+     .logarithmic = true,
+     .effect = reallocate,
+     DEEPGI_INT_FIELD(shadow_map_size)},
+    {.name = "ao-radius",
+     .label = "radius (m)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO: world-space gather radius",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.01f,
+     .slider_max = 10.0f,
+     .logarithmic = true,
+     DEEPGI_FLOAT_FIELD(ao.radius)},
+    {.name = "ao-bias",
+     .label = "bias (m)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO: occluders closer than this to the tangent plane are ignored; default "
+             "0 with march and solid-angle, 0.01 with published",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .maximum = unlimited,
+     .slider_min = 0.0f,
+     .slider_max = 0.5f,
+     DEEPGI_FLOAT_FIELD(ao.bias)},
+    {.name = "ao-intensity",
+     .label = "intensity",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO: exponent on the visibility",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.1f,
+     .slider_max = 8.0f,
+     .logarithmic = true,
+     DEEPGI_FLOAT_FIELD(ao.intensity)},
+    {.name = "ao-q",
+     .label = "q (px per MIP)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO and radiosity: tap radius per MIP level step",
+     .unit = "pixels",
+     .minimum = limits::min_ao_q,
+     .maximum = unlimited,
+     .slider_min = limits::min_ao_q,
+     .slider_max = 64.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(ao.q)},
-    {"ao-layers", "layers", "ao", true, 1.0f, float(limits::max_ao_layers), false,
+    {.name = "ao-layers",
+     .label = "layers",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO: G-buffer layers the taps test",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_ao_layers),
+     .slider_min = 1.0f,
+     .slider_max = float(limits::max_ao_layers),
      DEEPGI_INT_FIELD(ao.layers)},
-    {"ao-max-mip", "max MIP level", "ao", true, 0.0f, float(limits::max_ao_mip_level), false,
+    {.name = "ao-max-mip",
+     .label = "max MIP level",
+     .group = "ao",
+     .owner = "depth_pyramid",
+     .help = "Deepest depth-pyramid level built, and read by the gathers",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = float(limits::max_ao_mip_level),
+     .slider_min = 0.0f,
+     .slider_max = float(limits::max_ao_mip_level),
+     .effect = reallocate,
      DEEPGI_INT_FIELD(ao.max_mip_level)},
-    {"ao-alpha", "temporal alpha", "ao", false, 0.0f, 0.99f, false, DEEPGI_FLOAT_FIELD(ao.alpha)},
-    {"ao-thickness", "thickness (m, march)", "ao", false, 0.01f, 1.0f, true,
+    {.name = "ao-alpha",
+     .label = "temporal alpha",
+     .group = "ao",
+     .owner = "ao_temporal",
+     .help = "AO temporal filter's history weight across rotation cycles (0: raw SAO of each "
+             "frame)",
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .maximum_inclusive = false,
+     .slider_min = 0.0f,
+     .slider_max = 0.99f,
+     DEEPGI_FLOAT_FIELD(ao.alpha)},
+    {.name = "ao-thickness",
+     .label = "thickness (m, march)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO, march: the scene is taken as solid this deep behind a stored surface "
+             "with no back face behind it",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.01f,
+     .slider_max = 1.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(ao.thickness)},
-    {"radiosity-radius", "radius (m)", "radiosity", false, 0.05f, 10.0f, true,
+    {.name = "radiosity-radius",
+     .label = "radius (m)",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: world-space gather radius",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.05f,
+     .slider_max = 10.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(radiosity.radius)},
-    {"radiosity-boost", "boost", "radiosity", false, 0.0f, 1.0f, false,
+    {.name = "radiosity-boost",
+     .label = "boost",
+     .group = "radiosity",
+     .owner = "radiosity_prepare",
+     .help = "Deep radiosity: colour boost (0: energy conserving)",
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .slider_min = 0.0f,
+     .slider_max = 1.0f,
      DEEPGI_FLOAT_FIELD(radiosity.boost)},
-    {"radiosity-clamp", "tap clamp", "radiosity", false, 0.1f, 100.0f, true,
+    {.name = "radiosity-clamp",
+     .label = "tap clamp",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: largest contribution of one sample, per channel",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.1f,
+     .slider_max = 100.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(radiosity.tap_clamp)},
-    {"rho-prop", "rho_prop (bounces)", "radiosity", false, 0.0f, 1.0f, false,
+    {.name = "rho-prop",
+     .label = "rho_prop (bounces)",
+     .group = "radiosity",
+     .owner = "radiosity_prepare",
+     .help = "Deep radiosity: share of last frame's indirect light in the next gather "
+             "(multiple bounces)",
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .slider_min = 0.0f,
+     .slider_max = 1.0f,
      DEEPGI_FLOAT_FIELD(radiosity.rho_prop)},
-    {"radiosity-alpha", "temporal alpha", "radiosity", false, 0.0f, 0.99f, false,
+    {.name = "radiosity-alpha",
+     .label = "temporal alpha",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: temporal filter's history weight (0: raw gather)",
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .maximum_inclusive = false,
+     .slider_min = 0.0f,
+     .slider_max = 0.99f,
      DEEPGI_FLOAT_FIELD(radiosity.alpha)},
-    {"radiosity-layers", "layers", "radiosity", true, 1.0f, float(limits::max_radiosity_layers),
-     false, DEEPGI_INT_FIELD(radiosity.layers)},
-    {"blur-depth-tolerance", "depth tolerance", "blur", false, 0.005f, 1.0f, true,
+    {.name = "radiosity-layers",
+     .label = "layers",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: G-buffer layers gathered",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_radiosity_layers),
+     .slider_min = 1.0f,
+     .slider_max = float(limits::max_radiosity_layers),
+     .effect = drop_history,
+     DEEPGI_INT_FIELD(radiosity.layers)},
+    {.name = "blur-depth-tolerance",
+     .label = "depth tolerance",
+     .group = "blur",
+     .owner = "blur",
+     .help = "Blur: relative depth difference at which a tap weighs nothing",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.005f,
+     .slider_max = 1.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(blur.depth_tolerance)},
-    {"blur-normal-power", "normal power", "blur", false, 0.5f, 64.0f, true,
+    {.name = "blur-normal-power",
+     .label = "normal power",
+     .group = "blur",
+     .owner = "blur",
+     .help = "Blur: exponent on the normal agreement max(dot(n_tap, n_centre), 0)",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.5f,
+     .slider_max = 64.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(blur.normal_power)},
-    {"blur-plane-tolerance", "plane tolerance (m)", "blur", false, 0.001f, 1.0f, true,
+    {.name = "blur-plane-tolerance",
+     .label = "plane tolerance",
+     .group = "blur",
+     .owner = "blur",
+     .help = "Blur: distance from the centre's tangent plane, as a fraction of its depth, at "
+             "which a tap weighs nothing",
+     .minimum = 0.0f,
+     .minimum_inclusive = false,
+     .maximum = unlimited,
+     .slider_min = 0.001f,
+     .slider_max = 1.0f,
+     .logarithmic = true,
      DEEPGI_FLOAT_FIELD(blur.plane_tolerance)},
-    {"blur-extent", "extent (x AO radius, 0: none)", "blur", false, 0.0f, 4.0f, false,
+    {.name = "blur-extent",
+     .label = "extent (x AO radius, 0: none)",
+     .group = "blur",
+     .owner = "blur",
+     .help = "Blur: world-space reach as a fraction of the AO radius; a tap that far from the "
+             "centre weighs nothing (0: no limit)",
+     .minimum = 0.0f,
+     .maximum = unlimited,
+     .slider_min = 0.0f,
+     .slider_max = 4.0f,
      DEEPGI_FLOAT_FIELD(blur.extent)},
 }};
 
@@ -282,6 +445,33 @@ const NumericSetting* find_numeric_setting(std::string_view name) {
     for (const auto& setting : numeric_table)
         if (setting.name == name) return &setting;
     return nullptr;
+}
+
+std::string describe_limits(const NumericSetting& setting) {
+    if (setting.integer) {
+        if (setting.maximum == setting.minimum + 1.0f)
+            return fmt::format("{} or {}", setting.minimum, setting.maximum);
+        return fmt::format("an integer in [{}, {}]", setting.minimum, setting.maximum);
+    }
+    if (std::isinf(setting.maximum)) {
+        return fmt::format("a finite number{}{} {} {}", setting.unit.empty() ? "" : " of ",
+                           setting.unit, setting.minimum_inclusive ? ">=" : ">", setting.minimum);
+    }
+    return fmt::format("a number in {}{}, {}{}", setting.minimum_inclusive ? "[" : "(",
+                       setting.minimum, setting.maximum, setting.maximum_inclusive ? "]" : ")");
+}
+
+void check_setting(const NumericSetting& setting, float value) {
+    const bool above =
+        setting.minimum_inclusive ? value >= setting.minimum : value > setting.minimum;
+    const bool below =
+        setting.maximum_inclusive ? value <= setting.maximum : value < setting.maximum;
+    const bool whole = !setting.integer || value == std::round(value);
+    if (std::isfinite(value) && above && below && whole) return;
+    if (setting.integer)
+        throw InputError(
+            fmt::format("--{} must be {}, got {}", setting.name, describe_limits(setting), value));
+    throw InputError(fmt::format("--{} must be {}", setting.name, describe_limits(setting)));
 }
 
 }  // namespace deepgi

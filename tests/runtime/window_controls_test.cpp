@@ -226,3 +226,61 @@ TEST_CASE("window: set commands edit the light", "[runtime][window]") {
     CHECK(angles.yaw == Approx(0.4f));
     CHECK(angles.pitch == Approx(0.7f));
 }
+
+namespace {
+
+// A value on the refused side of a limit, and one on the accepted side.
+float just_outside(const NumericSetting& row, float limit, bool inclusive, float direction) {
+    if (!inclusive) return limit;
+    const float step = row.integer ? 1.0f : std::max(1e-3f, std::abs(limit) * 1e-3f);
+    return limit + direction * step;
+}
+float just_inside(const NumericSetting& row, float limit, bool inclusive, float direction) {
+    if (inclusive) return limit;
+    return row.integer ? limit - direction : std::nextafter(limit, -direction * INFINITY);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "settings: every row has help and an owner, its default inside its limits, and the "
+    "command line refuses a value just outside each limit",
+    "[runtime][settings]") {
+    const std::set<std::string_view> owners = {
+        "frame",         "shadow",  "gbuffer",     "backface_depth",    "direct_light",
+        "depth_pyramid", "sao",     "ao_temporal", "radiosity_prepare", "radiosity",
+        "blur",          "compose", "tonemap"};
+    const RenderSettings defaults;
+    for (const NumericSetting& row : numeric_settings()) {
+        INFO(row.name);
+        CHECK_FALSE(row.help.empty());
+        CHECK(owners.count(row.owner) == 1);
+        CHECK_NOTHROW(check_setting(row, row.get(defaults)));
+        struct Limit {
+            float value;
+            bool inclusive;
+            float direction;  // towards the refused side
+        };
+        std::vector<Limit> limits = {{row.minimum, row.minimum_inclusive, -1.0f}};
+        if (std::isfinite(row.maximum))
+            limits.push_back({row.maximum, row.maximum_inclusive, 1.0f});
+        for (const Limit& limit : limits) {
+            const float inside = just_inside(row, limit.value, limit.inclusive, limit.direction);
+            const float outside = just_outside(row, limit.value, limit.inclusive, limit.direction);
+            INFO("inside " << inside << ", outside " << outside);
+            RenderSettings settings;
+            row.set(settings, inside);
+            CHECK_NOTHROW(validate(settings));
+            CHECK_THROWS_WITH(check_setting(row, outside),
+                              Catch::StartsWith(fmt::format("--{} must be ", row.name)));
+            // The command line refuses it before any rendering, with one line
+            // naming the option, exit status 2.
+            const auto result = spiral::test::run_command(
+                fmt::format("'{}' --headless --size 8x8 --output /nonexistent/x.png --{}={}",
+                            DEEPGI_EXECUTABLE, row.name, fmt::format("{:.9g}", outside)));
+            CHECK(result.status == 2);
+            CHECK(result.err.rfind(fmt::format("deepgi: error: --{} must be ", row.name), 0) == 0);
+            CHECK(spiral::test::count_lines(result.err) == 1);
+        }
+    }
+}

@@ -226,18 +226,33 @@ ImageSize parse_size(std::string_view option, std::string_view text);
 // one line naming the setting by its command-line option.
 void validate(const RenderSettings& settings);
 
-// One numeric setting as the window's panel and its --script `set` command see
-// it. The slider range is only the panel's convenience: validate() holds the
-// hard limits (a typed-in or scripted value outside the slider is accepted
-// when valid).
+// What changing a setting costs the renderer (Renderer::set_settings).
+enum class SettingEffect {
+    none,          // read every frame: history stays
+    drop_history,  // history of the old value would take cycles to fade
+    reallocate,    // the owning pass's render targets are sized by it
+};
+
+// One numeric setting: the single row the command line, the window's panel,
+// its --script `set` command and validate() all read. The hard limits are
+// validate()'s; the slider range is only the panel's convenience (a typed-in
+// or scripted value outside it is accepted when valid).
 struct NumericSetting {
     std::string_view name;   // the command-line option without "--", e.g. "ao-radius"
     std::string_view label;  // the panel's label
-    std::string_view group;  // the panel section: "frame", "ao" or "radiosity"
+    std::string_view group;  // the panel section: "frame", "ao", "radiosity" or "blur"
+    std::string_view owner;  // the pass that reads it ("frame": the per-frame constants)
+    std::string_view help;   // the command line's help, without default or range
+    std::string_view unit;   // in words, for help and messages ("metres", "pixels"), or ""
     bool integer = false;
+    float minimum = 0.0f;  // lower limit
+    bool minimum_inclusive = true;
+    float maximum = 0.0f;  // upper limit; infinity: none
+    bool maximum_inclusive = true;
     float slider_min = 0.0f;
     float slider_max = 1.0f;
     bool logarithmic = false;
+    SettingEffect effect = SettingEffect::none;
     float (*get)(const RenderSettings&) = nullptr;
     void (*set)(RenderSettings&, float) = nullptr;
 };
@@ -245,5 +260,11 @@ struct NumericSetting {
 std::span<const NumericSetting> numeric_settings();
 // nullptr for an unknown name.
 const NumericSetting* find_numeric_setting(std::string_view name);
+// "a finite number of metres > 0", "a number in [0, 1)", "1 or 2": what the
+// row accepts, in words, for help texts and messages.
+std::string describe_limits(const NumericSetting& setting);
+// Throws InputError "--NAME must be <describe_limits>" (", got V" for an
+// integer) when `value` is outside the row's limits.
+void check_setting(const NumericSetting& setting, float value);
 
 }  // namespace deepgi
