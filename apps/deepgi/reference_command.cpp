@@ -34,17 +34,28 @@ struct ReferenceOptions {
     double target_error = 0.004;
     std::uint64_t seed = 1;
     int threads = 0;
-    float radius = 0.5f;
-    float guard_band = 0.1f;
-    float min_separation = 0.5f;
+    float radius = deepgi::RenderSettings{}.ao.radius;
+    float guard_band = deepgi::RenderSettings{}.guard_band_fraction;
+    float min_separation = deepgi::RenderSettings{}.min_separation;
     bool no_ao = false;
     bool no_irradiance = false;
-    float radiosity_radius = 1.0f;
+    float radiosity_radius = deepgi::RenderSettings{}.radiosity.radius;
     int irradiance_rays = 16384;
     int irradiance_min_rays = 1024;
     int irradiance_ceiling_rays = 65536;
     double irradiance_target_error = 0.01;
 };
+
+// The row of a renderer setting the reference shares (settings.hpp).
+const deepgi::NumericSetting& row(std::string_view name) {
+    return *deepgi::find_numeric_setting(name);
+}
+
+// "<the row's help> (<its limits>), as deepgi --NAME"
+std::string row_help(std::string_view name) {
+    return fmt::format("{} ({}), as deepgi --{}", row(name).help,
+                       deepgi::describe_limits(row(name)), name);
+}
 
 int run(const ReferenceOptions& options) {
     deepgi::ReferenceSettings settings;
@@ -53,19 +64,16 @@ int run(const ReferenceOptions& options) {
     settings.render.height = size.height;
     if (options.output.empty()) throw deepgi::InputError("reference needs --output DIR");
     if (options.rays < 1) throw deepgi::InputError("--rays must be at least 1");
-    if (!(options.radius > 0.0f) || !std::isfinite(options.radius))
-        throw deepgi::InputError("--ao-radius must be a finite number of metres > 0");
-    if (!(options.guard_band >= 0.0f && options.guard_band <= 1.0f))
-        throw deepgi::InputError("--guard-band must be in [0, 1]");
-    if (!(options.min_separation >= 0.0f) || !std::isfinite(options.min_separation))
-        throw deepgi::InputError("--min-separation must be a finite number of metres >= 0");
+    // The renderer's settings the reference shares, checked by their rows.
+    deepgi::check_setting(row("ao-radius"), options.radius);
+    deepgi::check_setting(row("guard-band"), options.guard_band);
+    deepgi::check_setting(row("min-separation"), options.min_separation);
+    deepgi::check_setting(row("radiosity-radius"), options.radiosity_radius);
     if (!(options.target_error >= 0.0)) throw deepgi::InputError("--target-error must be >= 0");
     if (options.irradiance_rays < 1)
         throw deepgi::InputError("--irradiance-rays must be at least 1");
     if (options.irradiance_ceiling_rays < 1)
         throw deepgi::InputError("--irradiance-ceiling-rays must be at least 1");
-    if (!(options.radiosity_radius > 0.0f) || !std::isfinite(options.radiosity_radius))
-        throw deepgi::InputError("--radiosity-radius must be a finite number of metres > 0");
     if (!(options.irradiance_target_error >= 0.0))
         throw deepgi::InputError("--irradiance-target-error must be >= 0");
     if (options.no_ao && options.no_irradiance)
@@ -201,13 +209,12 @@ int run_reference_command(int argc, char** argv) {
                    "Stop adding rays once the standard error (times 1.3) is below this");
     app.add_option("--seed", options.seed, "Random seed (same seed, same images)");
     app.add_option("--threads", options.threads, "Worker threads (0: all)");
-    app.add_option("--ao-radius", options.radius, "AO radius r (m), as deepgi --ao-radius");
-    app.add_option("--guard-band", options.guard_band, "Guard band, fraction of the height");
-    app.add_option("--min-separation", options.min_separation, "Layer-1 separation dz (m)");
+    app.add_option("--ao-radius", options.radius, row_help("ao-radius"));
+    app.add_option("--guard-band", options.guard_band, row_help("guard-band"));
+    app.add_option("--min-separation", options.min_separation, row_help("min-separation"));
     app.add_flag("--no-ao", options.no_ao, "Do not trace ambient visibility");
     app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
-    app.add_option("--radiosity-radius", options.radiosity_radius,
-                   "Radiosity radius (m), as deepgi --radiosity-radius");
+    app.add_option("--radiosity-radius", options.radiosity_radius, row_help("radiosity-radius"));
     app.add_option("--irradiance-rays", options.irradiance_rays,
                    "Most irradiance rays per pixel (cosine directions and emitter shadow rays)");
     app.add_option("--irradiance-min-rays", options.irradiance_min_rays,
