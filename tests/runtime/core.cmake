@@ -42,7 +42,7 @@ catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEO
 # renderer's live edits (EGL, no window).
 add_executable(deepgi_window_tests ${CMAKE_CURRENT_LIST_DIR}/window_controls_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/live_settings_test.cpp)
-target_link_libraries(deepgi_window_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt)
+target_link_libraries(deepgi_window_tests PRIVATE deepgi::window spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_window_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 target_compile_definitions(deepgi_window_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_window_tests deepgi)
