@@ -5,7 +5,7 @@
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
-#include "scene/scene_builder.hpp"
+#include "deepgi/scene_builder.hpp"
 #include "support/runtime_support.hpp"
 
 #include <spiral/codegen.hpp>

@@ -1,4 +1,4 @@
-#include "scene/scene_builder.hpp"
+#include "deepgi/scene_builder.hpp"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 // layer something to do: surfaces hidden behind blocks, columns and shelves.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
-#include "scene/scene_builder.hpp"
+#include "deepgi/scene_builder.hpp"
 
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@
 // one directional light.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
-#include "scene/scene_builder.hpp"
+#include "deepgi/scene_builder.hpp"
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>

@@ -3,7 +3,7 @@
 
 #include "deepgi/renderer.hpp"
 
-#include "scene/scene_builder.hpp"
+#include "deepgi/scene_builder.hpp"
 
 #include <algorithm>
 #include <cmath>

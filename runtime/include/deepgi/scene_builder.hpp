@@ -1,5 +1,6 @@
 #pragma once
-// Helpers for the procedural scenes: quads and boxes with outward faces,
+// Builds procedural scenes (the built-in ones, the reference scenes, the
+// report's hard cases): quads and boxes with outward faces,
 // gathered per material and packed into one index range per material.
 #include "deepgi/scene.hpp"
 
