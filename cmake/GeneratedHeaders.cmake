@@ -1,4 +1,4 @@
-# Build-time shader headers (design.md section 2).
+# Build-time shader headers (docs/design.md, section 4).
 #
 # Runs the freshly built spiralgen to write, into ${SPIRAL_GENERATED_DIR}:
 #   ao_taps.glsl         spiralgen header --pass ao --taps ${AO_TAPS} [--tau ${AO_TAU}]

@@ -9,7 +9,7 @@ packages=(
   glslang-tools xvfb xauth
   clang-14 libfuzzer-14-dev
   python3-matplotlib  # scripts/plot_discrepancy.py
-  assimp-testmodels  # glTF sample models the render test and README image use
+  assimp-testmodels  # glTF sample models the render test and docs/gallery.md use
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the README's "what each part adds" row for the cornell scene into
+# Renders docs/gallery.md's "what each part adds" row for the cornell scene into
 # docs/figures/: direct light only; + deep SAO on the environment term;
 # + one bounce of deep radiosity (rho_prop 0); + multiple bounces
 # (rho_prop 1). Every image gets the same frames, so the temporal filter has

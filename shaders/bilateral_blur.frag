@@ -1,5 +1,5 @@
 #version 450 core
-// Edge-aware separable blur (design.md 3, step 5): one direction per draw,
+// Edge-aware separable blur (docs/design.md, section 5.10): one direction per draw,
 // Gaussian weights from the generated blur_kernel.glsl, each tap further
 // weighted by how well its depth, normal and position agree with the centre's
 // surface and by how far it lies from the centre in metres, then renormalised.

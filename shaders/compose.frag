@@ -1,5 +1,5 @@
 #version 450 core
-// Outgoing radiance of layer 0 (design.md 3, step 8):
+// Outgoing radiance of layer 0 (docs/design.md, section 5.11):
 //
 //   L = direct + albedo/pi * (E + env(n) * (1 - c)) * AV + emissive
 //
@@ -7,7 +7,7 @@
 // area estimator (radiosity.frag) E already counts only the part of the
 // hemisphere its samples covered and c is that covered share, so E is not
 // scaled by c: the environment fills the uncovered rest (open sky, the
-// buffer's edge). design.md writes E * c; this code never did, and the
+// buffer's edge). The deep G-buffer paper scales E by c; this code does not, and the
 // published normalisation (kept for comparison) is composed the same way,
 // without the scaling. The environment is an
 // analytic sky for scenes with a sky (background not black) and the constant

@@ -1,5 +1,5 @@
 #version 450 core
-// Camera-space depth pyramid (design.md 3, step 2). Level 0 holds the linear
+// Camera-space depth pyramid (docs/design.md, section 5.5). Level 0 holds the linear
 // depth of both G-buffer layers, packed into R and G so one fetch serves both
 // layers; 0 means no surface. Level m+1 copies one texel of each 2x2 block of
 // level m, the corner chosen by a rotated grid: averaging would invent depths

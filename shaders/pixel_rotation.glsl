@@ -1,4 +1,4 @@
-// Per-pixel rotation phi of a gather pattern (design.md 1.1), shared by the
+// Per-pixel rotation phi of a gather pattern (docs/design.md, section 1), shared by the
 // passes that rotate a spiral and by the CPU reference in tests/runtime.
 //
 // Why this hash: the classic SAO rotation (3x ^ y + x*y) * 10 multiplies the

@@ -1,5 +1,5 @@
 #version 450 core
-// Deep radiosity gather (design.md 3, step 6) for one G-buffer layer (uniform
+// Deep radiosity gather (docs/design.md, section 5.9) for one G-buffer layer (uniform
 // `layer`): irradiance E at X from the taps of the generated
 // radiosity_taps.glsl, each tap reading both depth layers.
 //
@@ -34,7 +34,7 @@
 // environment. Samples off the buffer, on sky or beyond r add nothing (the
 // reference's L is 0 there too), rather than being renormalised away.
 //
-// DEEPGI_RADIOSITY_METHOD_PUBLISHED (design.md, for comparison):
+// DEEPGI_RADIOSITY_METHOD_PUBLISHED (the deep G-buffer paper's, for comparison):
 //   E(X) = 2 pi / M * sum over used samples of min(B(Y) cos(theta_X), clamp)
 //   c(X) = M / (taps * layers)
 // M the used samples. It is not an estimate of the integral: it is 2 pi times

@@ -1,5 +1,5 @@
 #version 450 core
-// Radiosity prepare (design.md 3, steps 3 and 6): what the gather reads at a
+// Radiosity prepare (docs/design.md, section 5.8): what the gather reads at a
 // tap, for both G-buffer layers, as rotated-grid MIP levels like the depth
 // pyramid, so far taps read a coarser level (fewer cache misses) and each tap
 // costs two fetches per layer instead of six.

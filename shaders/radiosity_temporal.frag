@@ -1,5 +1,5 @@
 #version 450 core
-// Temporal filter of deep radiosity (design.md 3, step 7) for one layer: finds
+// Temporal filter of deep radiosity (docs/design.md, section 5.9) for one layer: finds
 // last frame's E of this pixel's surface point with the G-buffer's motion
 // vectors, rejects it where depth or normal disagree
 // (history_reprojection.glsl), and accumulates whole rotation cycles

@@ -1,5 +1,5 @@
 #version 450 core
-// Deep scalable ambient obscurance (design.md 3, step 4): ambient visibility
+// Deep scalable ambient obscurance (docs/design.md, section 5.6): ambient visibility
 // of layer 0 from the spiral taps of the generated ao_taps.glsl, each tap
 // testing both depth layers and keeping the larger occlusion.
 //
@@ -88,8 +88,9 @@ float solid_angle_term(vec3 v, vec3 normal, vec3 tap_position, vec3 tap_normal, 
   return alpha * depth_ratio_squared * cos_phi * (1.0 - vv / radius_squared) * cos_x * cos_y / (vv * cos_view);
 }
 
-// AO(X, Y) of design.md 3, step 4. Negative beyond the radius: the caller
-// clamps once against zero after taking the larger of both layers.
+// AO(X, Y) of the published SAO estimator (docs/design.md, section 5.6).
+// Negative beyond the radius: the caller clamps once against zero after
+// taking the larger of both layers.
 float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
   float vv = dot(v, v);
   float vn = dot(v, normal);

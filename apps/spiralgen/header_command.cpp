@@ -1,4 +1,4 @@
-// spiralgen header: the GLSL header of one gathering pass (design.md section 2).
+// spiralgen header: the GLSL header of one gathering pass (docs/design.md, section 4).
 #include <memory>
 #include <optional>
 #include <stdexcept>

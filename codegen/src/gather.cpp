@@ -192,7 +192,7 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
         "// choosing the MIP level without a length(). Values are float-rounded from double\n"
         "// and printed so that they read back exactly.\n"
         "//\n"
-        "// Annular-sector discrepancy (design.md 1.2), D = K/4n^2{1}:\n",
+        "// Annular-sector discrepancy (docs/design.md, section 2), D = K/4n^2{1}:\n",
         prefix, m == 1 ? "" : "m");
     out += verdict;
     out += fmt::format(

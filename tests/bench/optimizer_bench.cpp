@@ -1,6 +1,6 @@
 // Speed of the optimizer: the tau table at growing ranges (integer turns and
 // tau = p/8), the fast evaluator against the brute-force oracle, and peak
-// memory. Prints Markdown for the README. Timings are medians of repeated runs
+// memory. Prints Markdown for docs/performance.md. Timings are medians of repeated runs
 // in this one process; the tables run on 2 threads, like `spiralgen table
 // --jobs 2` on the 2-core build machine.
 //

@@ -2,7 +2,7 @@
 // small cases, invariances, and hard cases.
 //
 // Units: coordinates in 1/(2n), so D = K / (4n^2) with
-// K = |4n * count - width * arc| for the worst sector (design.md 1.3).
+// K = |4n * count - width * arc| for the worst sector (docs/design.md, section 3).
 #include <catch2/catch.hpp>
 
 #include <cstdint>

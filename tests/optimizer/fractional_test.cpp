@@ -2,7 +2,7 @@
 // evaluator against the brute-force oracle, scaling and mirror properties,
 // the search over p against a brute-force minimisation, and input checks.
 //
-// Units: radial 1/(2n), angular 1/(2nm), D = K / (4 n^2 m) (design.md 1.3).
+// Units: radial 1/(2n), angular 1/(2nm), D = K / (4 n^2 m) (docs/design.md, section 3).
 #include <catch2/catch.hpp>
 
 #include <cstdint>

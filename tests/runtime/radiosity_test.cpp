@@ -62,7 +62,7 @@ glm::vec3 position_at(const GatherInputs& inputs, int x, int y, float depth) {
 
 // The level-0 pixel whose values texel (x, y) of MIP level `level` holds in
 // the rotated-grid chain: each level takes texel 2t + ((t.y & 1) ^ 1,
-// (t.x & 1) ^ 1) of the level above, clamped to its size (design.md 3.2).
+// (t.x & 1) ^ 1) of the level above, clamped to its size (docs/design.md, section 5.5).
 glm::ivec2 rotated_grid_source(glm::ivec2 texel, int level, int width, int height) {
     for (int l = level; l > 0; --l) {
         const glm::ivec2 corner((texel.y & 1) ^ 1, (texel.x & 1) ^ 1);

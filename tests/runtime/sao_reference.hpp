@@ -1,5 +1,5 @@
 #pragma once
-// CPU evaluation of the deep SAO pass (design.md 3, step 4) and of the
+// CPU evaluation of the deep SAO pass (docs/design.md, section 5.6) and of the
 // rotated-grid depth pyramid, written from the formulas rather than from the
 // shaders, as the oracle the GPU read-backs are compared with.
 #include "deepgi/image_io.hpp"

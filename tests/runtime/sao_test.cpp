@@ -268,7 +268,7 @@ TEST_CASE("sao: compose adds albedo times E and the environment, times the blurr
           "[compose]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
-    // Every combination of the three terms compose can leave out (the README's
+    // Every combination of the three terms compose can leave out (docs/gallery.md's
     // direct-only / + AO / + bounces images): a term switched off must be
     // absent from the result, one switched on present.
     for (int terms = 0; terms < 8; ++terms) {

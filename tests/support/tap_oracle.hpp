@@ -1,5 +1,5 @@
 // Direct counting of taps in a sector, straight from the definition in
-// design.md 1.2; used to check the sectors that evaluators report.
+// docs/design.md, section 2; used to check the sectors that evaluators report.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // Turns the optimizer's results into text: the tau table in five formats, the
-// GLSL headers the gathering and blur passes #include (design.md section 2),
+// GLSL headers the gathering and blur passes #include (docs/design.md, section 4),
 // and an atomic file writer so no consumer ever sees half a file.
 //
 // Every formatter is a pure function of its arguments: the same arguments give

@@ -1,5 +1,5 @@
 // Exact annular-sector discrepancy of the spiral tap pattern, and the search
-// for the number of turns that minimises it (design.md section 1).
+// for the number of turns that minimises it (docs/design.md, sections 1 to 3).
 //
 // Every coordinate is measured in "half units" of 1/(2n): tap i sits at
 // radial coordinate x_i = 2i + 1 and angular coordinate
@@ -8,7 +8,7 @@
 // 4n^2 * local = |4n * count - W * L|, so D(n, tau) = K / (4n^2) for an integer
 // K, and everything below is integer arithmetic.
 //
-// Fractional turns tau = p / m (design.md section 1.3) refine the angular unit
+// Fractional turns tau = p / m (docs/design.md, section 3) refine the angular unit
 // to 1/(2nm): tap i sits at angle ((2i + 1) * p) mod 2nm, a sector's arc length
 // L is counted in that unit, and 4n^2 m * local = |4nm * count - W * L|, so
 // D = K / (4 n^2 m). m = 1 is the integer case. Wherever a turn count appears

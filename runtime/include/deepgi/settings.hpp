@@ -133,7 +133,7 @@ constexpr bool ao_method_gathers_taps(AoMethod method) {
     return method != AoMethod::march;
 }
 
-// Deep SAO (design.md 3, step 4; docs/deep-sao.md). Tap count and spiral turns
+// Deep SAO (docs/design.md, section 5.6; docs/deep-sao.md). Tap count and spiral turns
 // come from the generated ao_taps.glsl, not from here.
 struct AoSettings {
     float radius = 0.5f;     // world-space gather radius r (m)
@@ -161,7 +161,7 @@ struct AoSettings {
     bool enabled = true;
 };
 
-// Deep radiosity (design.md 3, steps 6 to 8; docs/radiosity.md). Tap count
+// Deep radiosity (docs/design.md, sections 5.8 and 5.9; docs/radiosity.md). Tap count
 // and spiral turns come from the generated radiosity_taps.glsl.
 struct RadiositySettings {
     float radius = 1.0f;  // world-space gather radius (m)

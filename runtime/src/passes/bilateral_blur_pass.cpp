@@ -1,4 +1,4 @@
-// Separable bilateral blur (design.md 3, step 5): a horizontal draw into an
+// Separable bilateral blur (docs/design.md, section 5.10): a horizontal draw into an
 // intermediate texture per source, then a vertical draw into the outputs. The
 // kernel is the generated blur_kernel.glsl the shader loader finds.
 //

@@ -1,6 +1,6 @@
 // Layer-0 outgoing radiance: direct light, albedo times the blurred deep
 // radiosity E (the environment filling where its confidence is low) times the
-// blurred deep SAO visibility, and emissive (design.md 3, step 8).
+// blurred deep SAO visibility, and emissive (docs/design.md, section 5.11).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 

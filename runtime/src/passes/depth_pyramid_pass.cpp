@@ -1,4 +1,4 @@
-// Camera-space depth pyramid (design.md 3, step 2): compute shaders write one
+// Camera-space depth pyramid (docs/design.md, section 5.5): compute shaders write one
 // MIP level at a time through image units, so no level is ever sampled while
 // it is being written. RG32F: linear depth of layer 0 (R) and 1 (G), 0 = no
 // surface; min(max_mip_level, floor(log2(max(width, height)))) + 1 levels.

@@ -1,5 +1,5 @@
-// Lambertian key light with PCF shadows on both G-buffer layers (design.md 3,
-// step 3), one draw per layer into an R11F_G11F_B10F array.
+// Lambertian key light with PCF shadows on both G-buffer layers (docs/design.md,
+// section 5.4), one draw per layer into an R11F_G11F_B10F array.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 

@@ -1,4 +1,4 @@
-// The two-layer deep G-buffer (design.md 3, step 1) with its three generators.
+// The two-layer deep G-buffer (docs/design.md, section 5.2) with its three generators.
 // Layer-0 depth goes into the "layer0-depth" history pair after the G-buffer
 // is built: the peel generator's second pass reads it this frame, the
 // single-pass generators read the previous frame's.

@@ -1,4 +1,4 @@
-// Deep radiosity (design.md 3, steps 6 to 8): the gather of radiosity.frag
+// Deep radiosity (docs/design.md, section 5.9): the gather of radiosity.frag
 // for both G-buffer layers into raw E + confidence (reading what the prepare
 // pass built), the temporal filter of radiosity_temporal.frag into ping-pong
 // history pairs per layer (whose previous slot also feeds the next frame's

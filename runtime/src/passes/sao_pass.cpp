@@ -1,4 +1,4 @@
-// Deep SAO (design.md 3, step 4). The tap pattern is whatever ao_taps.glsl the
+// Deep SAO (docs/design.md, section 5.6). The tap pattern is whatever ao_taps.glsl the
 // shader loader finds: the build's generated header in the renderer, a header
 // written at run time by the noise study and the tests.
 #include "passes/passes.hpp"

@@ -9,7 +9,7 @@
 // choosing the MIP level without a length(). Values are float-rounded from double
 // and printed so that they read back exactly.
 //
-// Annular-sector discrepancy (design.md 1.2), D = K/4n^2:
+// Annular-sector discrepancy (docs/design.md, section 2), D = K/4n^2:
 // D(3, 1) = 24/36 = 0.6666666666666666: the minimum over tau in [1, 3], reached by tau = 1, 2.
 #ifndef SPIRAL_AO_TAPS_GLSL
 #define SPIRAL_AO_TAPS_GLSL

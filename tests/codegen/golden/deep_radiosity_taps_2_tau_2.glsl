@@ -9,7 +9,7 @@
 // choosing the MIP level without a length(). Values are float-rounded from double
 // and printed so that they read back exactly.
 //
-// Annular-sector discrepancy (design.md 1.2), D = K/4n^2:
+// Annular-sector discrepancy (docs/design.md, section 2), D = K/4n^2:
 // tau = 2 was set by hand and is NOT the optimum. Its discrepancy is worse by
 // 4/16 = 0.25:
 //   chosen:  D(2, 2) = 16/16 = 1
