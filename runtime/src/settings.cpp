@@ -163,6 +163,10 @@ constexpr float unlimited = std::numeric_limits<float>::infinity();
 constexpr SettingEffect reallocate = SettingEffect::reallocate;
 constexpr SettingEffect drop_history = SettingEffect::drop_history;
 
+// Designated initializers leave the fields a row does not name at their
+// defaults (no unit, inclusive limits, no effect); GCC warns about exactly that.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
@@ -286,7 +290,7 @@ const std::array<NumericSetting, 22> numeric_table = {{
      .slider_min = 0.0f,
      .slider_max = float(limits::max_ao_mip_level),
      .effect = reallocate,
-     DEEPGI_INT_FIELD(ao.max_mip_level)},
+     DEEPGI_INT_FIELD(depth_pyramid.max_mip_level)},
     {.name = "ao-alpha",
      .label = "temporal alpha",
      .group = "ao",
@@ -431,6 +435,7 @@ const std::array<NumericSetting, 22> numeric_table = {{
      .slider_max = 4.0f,
      DEEPGI_FLOAT_FIELD(blur.extent)},
 }};
+#pragma GCC diagnostic pop
 
 #undef DEEPGI_FLOAT_FIELD
 #undef DEEPGI_INT_FIELD

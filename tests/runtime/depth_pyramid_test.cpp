@@ -65,7 +65,7 @@ TEST_CASE("depth pyramid: depth pyramid levels are rotated-grid subsamples at an
         for (int max_level : {5, 2, 0}) {
             RenderSettings settings = small_settings(size.width, size.height);
             settings.guard_band_fraction = size.guard;
-            settings.ao.max_mip_level = max_level;
+            settings.depth_pyramid.max_mip_level = max_level;
             Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
             renderer.render(scene.default_camera);
             const std::vector<FloatImage> levels = read_pyramid(renderer);

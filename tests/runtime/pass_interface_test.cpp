@@ -204,9 +204,9 @@ TEST_CASE("settings: an out-of-range value is rejected by validate() with one me
     settings.view = static_cast<DebugView>(-1);
     CHECK_THROWS_AS(validate(settings), InputError);
     settings = settings_at(64, 32);
-    settings.ao.max_mip_level = limits::max_ao_mip_level + 1;
+    settings.depth_pyramid.max_mip_level = limits::max_ao_mip_level + 1;
     CHECK_THROWS_WITH(validate(settings), Catch::Contains("--ao-max-mip"));
-    settings.ao.max_mip_level = limits::max_ao_mip_level;
+    settings.depth_pyramid.max_mip_level = limits::max_ao_mip_level;
     CHECK_NOTHROW(validate(settings));
     CHECK_THROWS_WITH(parse_generator("--generator", "delay"),
                       "--generator 'delay' is not one of peel, previous, reproject");

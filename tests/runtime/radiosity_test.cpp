@@ -77,7 +77,7 @@ glm::ivec2 rotated_grid_source(glm::ivec2 texel, int level, int width, int heigh
 int mip_levels(const RenderSettings& settings, int width, int height) {
     int deepest = 0;
     while ((std::max(width, height) >> (deepest + 1)) > 0) ++deepest;
-    return std::min(settings.ao.max_mip_level, deepest) + 1;
+    return std::min(settings.depth_pyramid.max_mip_level, deepest) + 1;
 }
 
 // E (rgb) and confidence of one layer with boost 1 (boost amount 0) and no

@@ -114,7 +114,7 @@ TEST_CASE("sao: deep SAO matches the CPU evaluation with other parameters and ta
     settings.ao.bias = 0.05f;
     settings.ao.intensity = 2.0f;
     settings.ao.q = 4.0f;
-    settings.ao.max_mip_level = 3;
+    settings.depth_pyramid.max_mip_level = 3;
     for (auto [n, tau] : {std::pair{8, 3}, std::pair{16, 1}, std::pair{32, 7}}) {
         write_ao_header(headers.path(), n, tau);
         check_against_reference(make_builtin_scene("cornell"), settings, loader,

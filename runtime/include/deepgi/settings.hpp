@@ -141,7 +141,6 @@ struct AoSettings {
     float intensity = 1.0f;  // exponent applied to the visibility
     float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
-    int max_mip_level = 5;   // deepest depth-pyramid level built and read
     // The march is the one estimator that meets the accuracy targets against
     // the ray-traced reference on every scene; solid-angle is the fast spiral
     // gather, about 5x cheaper on llvmpipe (docs/deep-sao.md, "Choosing an
@@ -191,6 +190,12 @@ struct BlurSettings {
     float extent = 0.5f;
 };
 
+// The depth pyramid (depth_pyramid.comp): how deep it is built. The gathers
+// read the level count the pass publishes, never this setting.
+struct DepthPyramidSettings {
+    int max_mip_level = 5;  // deepest level built (fewer when the image is smaller)
+};
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
@@ -207,6 +212,7 @@ struct RenderSettings {
     // Installs a KHR_debug callback: a GL error raised inside a pass becomes a
     // GraphicsError naming the pass (costs a synchronous debug context).
     bool gl_debug = false;
+    DepthPyramidSettings depth_pyramid;
     AoSettings ao;
     RadiositySettings radiosity;
     BlurSettings blur;  // one blur filters AO and radiosity E with the same weights

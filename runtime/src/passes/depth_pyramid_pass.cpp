@@ -44,7 +44,7 @@ public:
         height_ = frame.layout.internal_height;
         const int deepest_possible =
             std::bit_width(unsigned(std::max(width_, height_))) - 1;  // floor(log2)
-        levels_ = std::clamp(frame.settings->ao.max_mip_level, 0, deepest_possible) + 1;
+        levels_ = std::clamp(frame.settings->depth_pyramid.max_mip_level, 0, deepest_possible) + 1;
         pyramid_ = gl::create_texture(GL_TEXTURE_2D);
         label_texture(pyramid_, name(), "linear depth");
         glTextureStorage2D(pyramid_.get(), levels_, GL_RG32F, width_, height_);
@@ -52,6 +52,9 @@ public:
         glTextureParameteri(pyramid_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(pyramid_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        // Passes that build a pyramid of their own beside it (radiosity
+        // prepare) size it from this, at resize.
+        frame.publish_int("depth_pyramid.max_level", levels_ - 1);
     }
 
     void run(FrameResources& frame) override {

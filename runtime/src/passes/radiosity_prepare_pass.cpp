@@ -48,9 +48,9 @@ public:
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
-        // The depth pyramid's level count (depth_pyramid_pass.cpp).
-        const int deepest_possible = std::bit_width(unsigned(std::max(width_, height_))) - 1;
-        levels_ = std::clamp(frame.settings->ao.max_mip_level, 0, deepest_possible) + 1;
+        // As many levels as the depth pyramid, which resizes first and
+        // publishes its deepest level.
+        levels_ = frame.integer("depth_pyramid.max_level") + 1;
         radiance_ = create_mip_array(GL_RGBA16F, width_, height_, levels_);
         label_texture(radiance_, name(), "radiance");
         normal_ = create_mip_array(GL_RG16F, width_, height_, levels_);
