@@ -37,14 +37,14 @@ int main(int argc, char** argv) {
             for (const auto& timing : renderers.front()->last_timings())
                 passes.push_back(timing.pass);
             passes.push_back("total");
-            fmt::print("\n{}, {}\n\n| generator |", scene_name,
+            fmt::print("\n{}, {}\n\n| scene | generator |", scene_name,
                        bench::measured_on(*renderers.front(), options));
             for (const auto& pass : passes) fmt::print(" {} |", pass);
-            fmt::print("\n|---|");
+            fmt::print("\n|---|---|");
             for (std::size_t i = 0; i < passes.size(); ++i) fmt::print("--:|");
             fmt::print("\n");
             for (std::size_t g = 0; g < configurations.size(); ++g) {
-                fmt::print("| {} |", to_string(generators[g]));
+                fmt::print("| {} | {} |", scene_name, to_string(generators[g]));
                 for (const auto& pass : passes) {
                     const auto found = medians[g].find(pass);
                     // A pass a generator does not run shows as "-", never as 0.
