@@ -111,7 +111,8 @@ std::string inputs_text(const std::vector<SearchResult>& results) {
         m == 1 ? "tau*(n), the smallest tau in [1, n]"
                : fmt::format("tau*(n) = p / {0}, the smallest p in [1, {0} n]", m);
     return fmt::format(
-        "{} minimising the annular-sector discrepancy (docs/design.md, section 2), for n = {}..{}{}",
+        "{} minimising the annular-sector discrepancy (docs/design.md, section 2), for n = "
+        "{}..{}{}",
         space, results.front().n, results.back().n, contiguous ? "" : " (with gaps)");
 }
 
