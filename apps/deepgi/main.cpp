@@ -89,14 +89,10 @@ deepgi::RenderSettings settings_from(const Options& options) {
     const auto rows = deepgi::numeric_settings();
     for (std::size_t i = 0; i < rows.size(); ++i) {
         if (!options.numeric_given[i]) continue;
-        // Checked here, before the float conversion could round 2.5 to 2
-        // or 1e40 to infinity's neighbour.
-        const double value = options.numeric[i];
-        if (rows[i].integer && value != std::round(value))
-            throw deepgi::InputError(fmt::format("--{} must be {}, got {}", rows[i].name,
-                                                 deepgi::describe_limits(rows[i]), value));
-        deepgi::check_setting(rows[i], float(value));
-        rows[i].set(settings, float(value));
+        // Checked as given, before the float conversion could round 2.5 to
+        // a whole number.
+        deepgi::check_setting(rows[i], options.numeric[i]);
+        rows[i].set(settings, float(options.numeric[i]));
     }
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);

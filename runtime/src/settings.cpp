@@ -466,7 +466,7 @@ std::string describe_limits(const NumericSetting& setting) {
                        setting.minimum, setting.maximum, setting.maximum_inclusive ? "]" : ")");
 }
 
-void check_setting(const NumericSetting& setting, float value) {
+void check_setting(const NumericSetting& setting, double value) {
     const bool above =
         setting.minimum_inclusive ? value >= setting.minimum : value > setting.minimum;
     const bool below =

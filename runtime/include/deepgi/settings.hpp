@@ -271,6 +271,6 @@ const NumericSetting* find_numeric_setting(std::string_view name);
 std::string describe_limits(const NumericSetting& setting);
 // Throws InputError "--NAME must be <describe_limits>" (", got V" for an
 // integer) when `value` is outside the row's limits.
-void check_setting(const NumericSetting& setting, float value);
+void check_setting(const NumericSetting& setting, double value);
 
 }  // namespace deepgi
