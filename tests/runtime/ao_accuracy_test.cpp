@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -155,8 +156,10 @@ SceneErrors measure_scene(const Scene& scene, const ReferenceImages& truth, AoMe
 
 // Targets not met yet, as "method/scene/target/stage", with the hard bound
 // each must still keep (about 10% above what the estimator measures, two more
-// pixels for counts of a few). Reported through CHECK_NOFAIL; every target not
-// listed is a hard check.
+// pixels for counts of a few). A miss is written to missed_targets_file, which
+// the ctest entry "deepgi_ao_accuracy_targets_missed" prints and reports as
+// skipped, so the ctest summary names it; every target not listed is a hard
+// check.
 const std::map<std::string, double>& short_of_target() {
     static const std::map<std::string, double> bounds = {
         // The solid angle sees only what the layers store: occluders hidden
@@ -182,14 +185,38 @@ const std::map<std::string, double>& short_of_target() {
     return bounds;
 }
 
-// A target `value <= limit`: hard where met, reported (with its bound kept
-// hard) where listed in short_of_target().
+// Where the missed targets are written, relative to the test's working
+// directory (tests/runtime/CMakeLists.txt reads the same name).
+constexpr const char* missed_targets_file = "ao-accuracy-missed-targets.md";
+
+// The missed targets so far in this process, as table rows.
+std::vector<std::string>& missed_targets() {
+    static std::vector<std::string> rows;
+    return rows;
+}
+
+// Rewrites the file with every row so far (none: an empty file), so what a
+// run leaves is that run's.
+void write_missed_targets() {
+    std::ofstream file(missed_targets_file, std::ios::trunc);
+    if (missed_targets().empty()) return;
+    file << "| estimator/scene | target | stage | measured | limit | regression bound |\n"
+         << "|---|---|---|--:|--:|--:|\n";
+    for (const auto& row : missed_targets()) file << row << "\n";
+}
+
+// A target `value <= limit`: hard where met; where listed in
+// short_of_target() a miss is recorded for the table, and its regression
+// bound (taken from a measured value) stays hard.
 void check_target(const std::string& name, const std::string& target, const std::string& stage,
                   double value, double limit) {
     const auto& bounds = short_of_target();
     INFO(target << " (" << stage << ")");
     if (const auto bound = bounds.find(name + "/" + target + "/" + stage); bound != bounds.end()) {
-        CHECK_NOFAIL(value <= limit);
+        if (value > limit)
+            missed_targets().push_back(fmt::format("| {} | {} | {} | {:.4g} | {:.4g} | {:.4g} |",
+                                                   name, target, stage, value, limit,
+                                                   bound->second));
         CHECK(value <= bound->second);
     } else {
         CHECK(value <= limit);
@@ -234,6 +261,7 @@ TEST_CASE("ao accuracy: blurred deep SAO estimates the ray-traced visibility on 
         check_stage(key, "first", errors.first);
         check_stage(key, "accumulated", errors.accumulated);
     }
+    write_missed_targets();
 }
 
 }  // namespace deepgi::test
