@@ -73,6 +73,7 @@ struct RendererState {
     gl::VertexArray empty_vertex_array;
     gl::Buffer frame_constants;
     std::vector<std::unique_ptr<Pass>> passes;
+    std::vector<PassDeclaration> declarations;  // per pass, checked for `settings`
     FrameResources frame;
     PassTimer timer{true};
     std::optional<Camera> last_camera;   // converts dumped depth to metres
@@ -123,7 +124,6 @@ void resize_passes(RendererState& state) {
     frame.layout = frame_layout(state.settings);
     frame.empty_vertex_array = state.empty_vertex_array.get();
     frame.allocate_display(state.settings.width, state.settings.height);
-    check_pass_declarations(state.passes, state.settings);
     for (auto& pass : state.passes) {
         pass->resize(frame);
         throw_gl_errors(state, fmt::format("resizing pass '{}'", pass->name()));
@@ -219,15 +219,16 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
 
     state.timer.begin_frame();
     frame.begin_frame_textures();
-    for (auto& pass : state.passes) {
+    for (std::size_t i = 0; i < state.passes.size(); ++i) {
+        Pass* pass = state.passes[i].get();
         if (!pass->enabled(state.settings)) continue;
         ScopedPass timed(state.timer, std::string(pass->name()));
-        PassDeclaration declaration = pass->declaration(state.settings);
         // check_pass_declarations() has made sure every read is written.
+        const PassDeclaration& declaration = state.declarations[i];
         for (const PassRead& read : declaration.reads)
             if (read.binding != PassRead::unbound)
                 glBindTextureUnit(read.binding, frame.texture(read.texture));
-        frame.begin_pass(pass->name(), std::move(declaration.writes));
+        frame.begin_pass(pass->name(), declaration.writes);
         pass->run(frame);
         frame.end_pass();
         throw_gl_errors(state, fmt::format("pass '{}'", pass->name()));
@@ -268,6 +269,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     install_gl_debug(state, settings.gl_debug);
     try {
         for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
+        state.declarations = check_pass_declarations(state.passes, state.settings);
         resize_passes(state);
     } catch (...) {
         // No destructor runs for a half-built renderer; the callback must not
@@ -319,8 +321,9 @@ void Renderer::set_settings(const RenderSettings& settings) {
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).
-    check_pass_declarations(state.passes, settings);
+    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, settings);
     state.settings = settings;
+    state.declarations = std::move(declarations);
     if (reallocate) resize_passes(state);
     if (invalidate) state.frame.invalidate_history(reason);
     if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));

@@ -11,8 +11,8 @@ namespace deepgi {
 
 void FrameResources::publish(const std::string& name, GLuint texture) {
     if (!running_pass_.empty()) {
-        if (std::find(declared_writes_.begin(), declared_writes_.end(), name) ==
-            declared_writes_.end()) {
+        if (std::find(declared_writes_->begin(), declared_writes_->end(), name) ==
+            declared_writes_->end()) {
             throw GraphicsError(
                 fmt::format("pass '{}' writes the texture '{}', which it does not "
                             "declare",
@@ -27,15 +27,15 @@ void FrameResources::begin_frame_textures() {
     textures_.clear();
 }
 
-void FrameResources::begin_pass(std::string_view pass, std::vector<std::string> writes) {
+void FrameResources::begin_pass(std::string_view pass, const std::vector<std::string>& writes) {
     running_pass_ = pass;
-    declared_writes_ = std::move(writes);
+    declared_writes_ = &writes;
     published_.clear();
 }
 
 void FrameResources::end_pass() {
     const std::string pass = std::exchange(running_pass_, {});
-    for (const auto& name : declared_writes_) {
+    for (const auto& name : *declared_writes_) {
         if (std::find(published_.begin(), published_.end(), name) == published_.end())
             throw GraphicsError(
                 fmt::format("pass '{}' declares the texture '{}' but did not "

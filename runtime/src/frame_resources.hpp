@@ -63,7 +63,8 @@ public:
     // frame published before the first pass, and check what a pass published
     // against what it declared.
     void begin_frame_textures();
-    void begin_pass(std::string_view pass, std::vector<std::string> writes);
+    // `writes` must outlive the pass's run (the frame's checked declarations).
+    void begin_pass(std::string_view pass, const std::vector<std::string>& writes);
     // Throws GraphicsError naming the pass and the first declared write it
     // did not publish.
     void end_pass();
@@ -93,9 +94,9 @@ public:
 
 private:
     std::map<std::string, GLuint, std::less<>> textures_;
-    std::string running_pass_;                  // empty outside a pass's run()
-    std::vector<std::string> declared_writes_;  // the running pass's
-    std::vector<std::string> published_;        // what it has published so far
+    std::string running_pass_;                                   // empty outside a pass's run()
+    const std::vector<std::string>* declared_writes_ = nullptr;  // the running pass's
+    std::vector<std::string> published_;                         // what it has published so far
     std::map<std::string, int, std::less<>> integers_;
     std::map<std::string, HistoryPair, std::less<>> history_;
     bool history_valid_ = false;

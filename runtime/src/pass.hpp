@@ -86,11 +86,13 @@ FloatImage read_pass_output(const PassOutput& output, float near_plane);
 
 // ---- helpers shared by the passes ----
 
-// Checks the declarations of the enabled passes in list order; throws
-// GraphicsError with one line naming the pass and the texture when a pass
-// reads what no earlier enabled pass writes, or two passes write one name.
-void check_pass_declarations(const std::vector<std::unique_ptr<Pass>>& passes,
-                             const RenderSettings& settings);
+// Checks the declarations of the enabled passes in list order and returns
+// them, one per pass (empty for a disabled one), for the frame to bind and
+// enforce until the settings change; throws GraphicsError with one line
+// naming the pass and the texture when a pass reads what no earlier enabled
+// pass writes, or two passes write one name.
+std::vector<PassDeclaration> check_pass_declarations(
+    const std::vector<std::unique_ptr<Pass>>& passes, const RenderSettings& settings);
 
 // A program of fullscreen.vert and one fragment shader.
 gl::Program build_fullscreen_program(const ShaderLoader& loader, const std::string& fragment,

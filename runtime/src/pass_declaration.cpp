@@ -10,12 +10,14 @@
 
 namespace deepgi {
 
-void check_pass_declarations(const std::vector<std::unique_ptr<Pass>>& passes,
-                             const RenderSettings& settings) {
+std::vector<PassDeclaration> check_pass_declarations(
+    const std::vector<std::unique_ptr<Pass>>& passes, const RenderSettings& settings) {
+    std::vector<PassDeclaration> declarations(passes.size());
     std::map<std::string, std::string, std::less<>> writer;  // texture -> pass
-    for (const auto& pass : passes) {
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+        const Pass* pass = passes[i].get();
         if (!pass->enabled(settings)) continue;
-        const PassDeclaration declaration = pass->declaration(settings);
+        const PassDeclaration& declaration = declarations[i] = pass->declaration(settings);
         for (const PassRead& read : declaration.reads) {
             if (writer.find(read.texture) == writer.end()) {
                 throw GraphicsError(fmt::format(
@@ -32,6 +34,7 @@ void check_pass_declarations(const std::vector<std::unique_ptr<Pass>>& passes,
             }
         }
     }
+    return declarations;
 }
 
 }  // namespace deepgi
