@@ -11,7 +11,9 @@ in MaskVertex {
   float alpha;
 } mask_in;
 
-layout(binding = DEEPGI_UNIT_BASE_COLOUR) uniform sampler2D base_colour_texture;
+// The including shader chooses the texture's binding (ALPHA_MASK_BASE_COLOUR_BINDING,
+// defined first); its pass hands the same number to draw_scene_depth.
+layout(binding = ALPHA_MASK_BASE_COLOUR_BINDING) uniform sampler2D base_colour_texture;
 layout(location = DEEPGI_UNIFORM_BASE_COLOUR_FACTOR) uniform vec4 base_colour_factor;
 layout(location = DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE) uniform int has_base_colour_texture;
 layout(location = DEEPGI_UNIFORM_ALPHA_CUTOFF) uniform float alpha_cutoff;

@@ -10,15 +10,16 @@
 #include "history_reprojection.glsl"
 #include "temporal_accumulation.glsl"
 
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
-layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
-layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D raw_visibility;
+// Bindings are this shader's own; ao_temporal_pass.cpp binds the same numbers.
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 3) uniform sampler2DArray gbuffer_motion;
+layout(binding = 10) uniform sampler2D depth_pyramid;
+layout(binding = 13) uniform sampler2D raw_visibility;
 // x: filtered visibility, y: this cycle's running mean so far
-layout(binding = DEEPGI_UNIT_AO) uniform sampler2D history_visibility;
-layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key;
+layout(binding = 11) uniform sampler2D history_visibility;
+layout(binding = 19) uniform sampler2D history_key;
 
-layout(location = DEEPGI_UNIFORM_RADIOSITY_ALPHA) uniform float alpha;
+layout(location = 29) uniform float alpha;
 
 layout(location = 0) out vec4 out_visibility;  // x: filtered, y: partial
 layout(location = 1) out vec4 out_key;         // history_reprojection.glsl

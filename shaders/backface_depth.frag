@@ -8,12 +8,14 @@
 // Alpha-masked batches are drawn with ALPHA_MASK defined: a masked-out back
 // face is no surface, as it is none in the G-buffer.
 #include "shared_constants.h"
+// Bindings are this shader's own; backface_depth_pass.cpp binds the same numbers.
 #if defined(ALPHA_MASK)
+#define ALPHA_MASK_BASE_COLOUR_BINDING 9
 #include "alpha_mask.glsl"
 #endif
 
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;  // reversed Z
-layout(location = DEEPGI_UNIFORM_BACKFACE_LAYER) uniform int layer;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;  // reversed Z
+layout(location = 39) uniform int layer;
 
 void main() {
   float stored = texelFetch(gbuffer_depth, ivec3(gl_FragCoord.xy, layer), 0).r;

@@ -29,13 +29,14 @@
 #define BLUR_SOURCES 1
 #endif
 
-layout(binding = DEEPGI_UNIT_BLUR_SOURCE) uniform sampler2D source0;
+// Bindings are this shader's own; bilateral_blur_pass.cpp binds the same numbers.
+layout(binding = 12) uniform sampler2D source0;
 #if BLUR_SOURCES > 1
-layout(binding = DEEPGI_UNIT_BLUR_SECOND_SOURCE) uniform sampler2D source1;
+layout(binding = 25) uniform sampler2D source1;
 #endif
-layout(binding = DEEPGI_UNIT_BLUR_KEY) uniform sampler2D key;  // xyz: camera-space normal, w: linear depth
+layout(binding = 26) uniform sampler2D key;  // xyz: camera-space normal, w: linear depth
 
-layout(location = DEEPGI_UNIFORM_BLUR_DIRECTION) uniform ivec2 direction;
+layout(location = 23) uniform ivec2 direction;
 layout(std140, binding = DEEPGI_UBO_PASS) uniform BlurBlock {
   BlurParameters blur;
 };

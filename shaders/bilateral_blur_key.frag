@@ -7,8 +7,9 @@
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
-layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_key;  // level 0, R: layer-0 linear depth
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+// Bindings are this shader's own; bilateral_blur_pass.cpp binds the same numbers.
+layout(binding = 10) uniform sampler2D depth_key;  // level 0, R: layer-0 linear depth
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
 
 layout(location = 0) out vec4 out_key;
 

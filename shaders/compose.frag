@@ -16,17 +16,18 @@
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
-layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
-layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
-layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ambient_visibility;  // blurred deep SAO, signed
-layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
+// Bindings are this shader's own; compose_pass.cpp binds the same numbers.
+layout(binding = 7) uniform sampler2DArray direct_light;
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 1) uniform sampler2DArray gbuffer_albedo;
+layout(binding = 2) uniform sampler2DArray gbuffer_emissive;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;
+layout(binding = 11) uniform sampler2D ambient_visibility;  // blurred deep SAO, signed
+layout(binding = 14) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
 
 // x: AO, y: radiosity, z: environment; 0 leaves that term out (the
 // direct-only / + AO / + bounces comparison images).
-layout(location = DEEPGI_UNIFORM_COMPOSE_TERMS) uniform ivec3 terms;
+layout(location = 36) uniform ivec3 terms;
 
 layout(location = 0) out vec3 out_radiance;
 

@@ -5,19 +5,20 @@
 #include "gbuffer_encoding.glsl"
 #include "tonemap_curve.glsl"
 
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
-layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
-layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
-layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
-layout(binding = DEEPGI_UNIT_AO_RAW) uniform sampler2D ao_raw;
-layout(binding = DEEPGI_UNIT_AO) uniform sampler2D ao_blurred;
-layout(binding = DEEPGI_UNIT_AO_TEMPORAL) uniform sampler2D ao_temporal;
-layout(binding = DEEPGI_UNIT_RADIOSITY_RADIANCE) uniform sampler2DArray prepared_radiance;
-layout(binding = DEEPGI_UNIT_RADIOSITY) uniform sampler2D radiosity_blurred;
-layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER0) uniform sampler2D radiosity_layer0;
-layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER1) uniform sampler2D radiosity_layer1;
+// Bindings are this shader's own; debug_view_pass.cpp binds the same numbers.
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 1) uniform sampler2DArray gbuffer_albedo;
+layout(binding = 2) uniform sampler2DArray gbuffer_emissive;
+layout(binding = 3) uniform sampler2DArray gbuffer_motion;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;
+layout(binding = 7) uniform sampler2DArray direct_light;
+layout(binding = 13) uniform sampler2D ao_raw;
+layout(binding = 11) uniform sampler2D ao_blurred;
+layout(binding = 28) uniform sampler2D ao_temporal;
+layout(binding = 21) uniform sampler2DArray prepared_radiance;
+layout(binding = 14) uniform sampler2D radiosity_blurred;
+layout(binding = 17) uniform sampler2D radiosity_layer0;
+layout(binding = 18) uniform sampler2D radiosity_layer1;
 
 layout(location = 0) out vec4 out_colour;
 

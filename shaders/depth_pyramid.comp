@@ -12,11 +12,12 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = DEEPGI_IMAGE_PYRAMID_DESTINATION, rg32f) uniform writeonly image2D destination;
+// Bindings are this shader's own; depth_pyramid_pass.cpp binds the same numbers.
+layout(binding = 1, rg32f) uniform writeonly image2D destination;
 #ifdef PYRAMID_BASE_LEVEL
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;
 #else
-layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rg32f) uniform readonly image2D source;
+layout(binding = 0, rg32f) uniform readonly image2D source;
 #endif
 
 float linear_depth_or_zero(float stored) { return stored > 0.0 ? frame.camera_ray_scale.z / stored : 0.0; }

@@ -2,12 +2,15 @@
 // Lambertian direct light of one G-buffer layer (uniform `layer`) into HDR.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
+// Bindings are this shader's own; direct_light_pass.cpp binds the same numbers.
+#define LIGHTING_SHADOW_MAP_BINDING 6
+#define LIGHTING_SHADOW_CUBE_BINDING 27
 #include "lighting.glsl"
 
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
-layout(location = DEEPGI_UNIFORM_LAYER) uniform int layer;
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 1) uniform sampler2DArray gbuffer_albedo;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;
+layout(location = 4) uniform int layer;
 
 layout(location = 0) out vec3 out_radiance;
 

@@ -24,14 +24,15 @@ layout(location = DEEPGI_GBUFFER_OUTPUT_EMISSIVE) out vec3 out_emissive;
 // compare with their stored depth to reject history.
 layout(location = DEEPGI_GBUFFER_OUTPUT_MOTION) out vec4 out_motion;
 
+// Bindings are this shader's own; gbuffer_pass.cpp binds the same numbers.
 // Layer-0 depth (stored near/z): this frame's for peel, the previous frame's otherwise.
-layout(binding = DEEPGI_UNIT_REFERENCE_DEPTH) uniform sampler2D reference_depth;
-layout(binding = DEEPGI_UNIT_BASE_COLOUR) uniform sampler2D base_colour_texture;
+layout(binding = 5) uniform sampler2D reference_depth;
+layout(binding = 9) uniform sampler2D base_colour_texture;
 
 layout(location = DEEPGI_UNIFORM_BASE_COLOUR_FACTOR) uniform vec4 base_colour_factor;
 layout(location = DEEPGI_UNIFORM_EMISSIVE_FACTOR) uniform vec3 emissive_factor;
 layout(location = DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE) uniform int has_base_colour_texture;
-layout(binding = DEEPGI_UNIT_EMISSIVE) uniform sampler2D emissive_texture;
+layout(binding = 24) uniform sampler2D emissive_texture;
 layout(location = DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE) uniform int has_emissive_texture;
 layout(location = DEEPGI_UNIFORM_ALPHA_CUTOFF) uniform float alpha_cutoff;
 

@@ -2,8 +2,10 @@
 // pass now and by later passes that relight surfaces.
 #include "math_constants.glsl"
 
-layout(binding = DEEPGI_UNIT_SHADOW_MAP) uniform sampler2DShadow shadow_map;
-layout(binding = DEEPGI_UNIT_SHADOW_CUBE) uniform samplerCubeShadow shadow_cube;
+// The including shader chooses where the shadow maps are bound: it defines
+// LIGHTING_SHADOW_MAP_BINDING and LIGHTING_SHADOW_CUBE_BINDING first.
+layout(binding = LIGHTING_SHADOW_MAP_BINDING) uniform sampler2DShadow shadow_map;
+layout(binding = LIGHTING_SHADOW_CUBE_BINDING) uniform samplerCubeShadow shadow_cube;
 
 // Point light: one lookup (2x2 comparison filtered) in the depth cube. The
 // face is the direction's major axis, and its stored depth is that face's

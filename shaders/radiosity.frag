@@ -48,11 +48,12 @@
 #include "rotated_grid.glsl"
 #include "math_constants.glsl"
 
-layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
-layout(binding = DEEPGI_UNIT_RADIOSITY_RADIANCE) uniform sampler2DArray prepared_radiance;
-layout(binding = DEEPGI_UNIT_RADIOSITY_NORMAL) uniform sampler2DArray prepared_normal;
+// Bindings are this shader's own; radiosity_pass.cpp binds the same numbers.
+layout(binding = 10) uniform sampler2D depth_pyramid;
+layout(binding = 21) uniform sampler2DArray prepared_radiance;
+layout(binding = 22) uniform sampler2DArray prepared_normal;
 
-layout(location = DEEPGI_UNIFORM_LAYER) uniform int layer;
+layout(location = 4) uniform int layer;
 layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
   RadiosityGatherParameters gather;
 };

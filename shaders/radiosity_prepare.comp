@@ -26,27 +26,28 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = DEEPGI_IMAGE_PYRAMID_DESTINATION, rgba16f) uniform writeonly image2DArray radiance_destination;
-layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION, rg16f) uniform writeonly image2DArray normal_destination;
+// Bindings are this shader's own; radiosity_prepare_pass.cpp binds the same numbers.
+layout(binding = 1, rgba16f) uniform writeonly image2DArray radiance_destination;
+layout(binding = 3, rg16f) uniform writeonly image2DArray normal_destination;
 
 #ifdef PREPARE_BASE_LEVEL
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_ALBEDO) uniform sampler2DArray gbuffer_albedo;
-layout(binding = DEEPGI_UNIT_GBUFFER_EMISSIVE) uniform sampler2DArray gbuffer_emissive;
-layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
-layout(binding = DEEPGI_UNIT_GBUFFER_DEPTH) uniform sampler2DArray gbuffer_depth;
-layout(binding = DEEPGI_UNIT_DIRECT_LIGHT) uniform sampler2DArray direct_light;
-layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0) uniform sampler2D previous_irradiance0;
-layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1) uniform sampler2D previous_irradiance1;
-layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key0;
-layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1) uniform sampler2D history_key1;
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 1) uniform sampler2DArray gbuffer_albedo;
+layout(binding = 2) uniform sampler2DArray gbuffer_emissive;
+layout(binding = 3) uniform sampler2DArray gbuffer_motion;
+layout(binding = 4) uniform sampler2DArray gbuffer_depth;
+layout(binding = 7) uniform sampler2DArray direct_light;
+layout(binding = 15) uniform sampler2D previous_irradiance0;
+layout(binding = 16) uniform sampler2D previous_irradiance1;
+layout(binding = 19) uniform sampler2D history_key0;
+layout(binding = 20) uniform sampler2D history_key1;
 // The boost amount and rho_prop (pass_parameters.h).
 layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityPrepareBlock {
   RadiosityPrepareParameters prepare;
 };
 #else
-layout(binding = DEEPGI_IMAGE_PYRAMID_SOURCE, rgba16f) uniform readonly image2DArray radiance_source;
-layout(binding = DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE, rg16f) uniform readonly image2DArray normal_source;
+layout(binding = 0, rgba16f) uniform readonly image2DArray radiance_source;
+layout(binding = 2, rg16f) uniform readonly image2DArray normal_source;
 #endif
 
 

@@ -10,16 +10,17 @@
 #include "history_reprojection.glsl"
 #include "temporal_accumulation.glsl"
 
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
-layout(binding = DEEPGI_UNIT_GBUFFER_MOTION) uniform sampler2DArray gbuffer_motion;
-layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
-layout(binding = DEEPGI_UNIT_RADIOSITY_RAW_LAYER0) uniform sampler2D raw_irradiance;
-layout(binding = DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0) uniform sampler2D history_irradiance;
-layout(binding = DEEPGI_UNIT_HISTORY_PARTIAL) uniform sampler2D history_partial;
-layout(binding = DEEPGI_UNIT_RADIOSITY_HISTORY_KEY) uniform sampler2D history_key;
+// Bindings are this shader's own; radiosity_pass.cpp binds the same numbers.
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
+layout(binding = 3) uniform sampler2DArray gbuffer_motion;
+layout(binding = 10) uniform sampler2D depth_pyramid;
+layout(binding = 17) uniform sampler2D raw_irradiance;
+layout(binding = 15) uniform sampler2D history_irradiance;
+layout(binding = 23) uniform sampler2D history_partial;
+layout(binding = 19) uniform sampler2D history_key;
 
-layout(location = DEEPGI_UNIFORM_LAYER) uniform int layer;
-layout(location = DEEPGI_UNIFORM_RADIOSITY_ALPHA) uniform float alpha;
+layout(location = 4) uniform int layer;
+layout(location = 29) uniform float alpha;
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 layout(location = 1) out vec4 out_partial;     // this cycle's running mean so far

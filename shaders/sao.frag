@@ -23,11 +23,12 @@
 #define AO_LAYERS 2
 #endif
 
-layout(binding = DEEPGI_UNIT_DEPTH_PYRAMID) uniform sampler2D depth_pyramid;
-layout(binding = DEEPGI_UNIT_GBUFFER_NORMAL) uniform sampler2DArray gbuffer_normal;
+// Bindings are this shader's own; sao_pass.cpp binds the same numbers.
+layout(binding = 10) uniform sampler2D depth_pyramid;
+layout(binding = 0) uniform sampler2DArray gbuffer_normal;
 // March only: per layer, the nearest back face at or behind the stored
 // surface (reversed Z, 0 = none), where that surface's object ends.
-layout(binding = DEEPGI_UNIT_BACKFACE_DEPTH) uniform sampler2DArray backface_depth;
+layout(binding = 29) uniform sampler2DArray backface_depth;
 
 // sao.method: DEEPGI_AO_METHOD_PUBLISHED: 1 - sqrt(pi/N * sum AO(X, Y)), the
 // published heuristic. DEEPGI_AO_METHOD_SOLID_ANGLE: the obscurance integral

@@ -3,7 +3,7 @@
 // Depth only, unless ALPHA_MASK (shadow_mask.frag) is defined: then the
 // inputs of the alpha test (alpha_mask.glsl) are passed on.
 layout(location = DEEPGI_ATTRIBUTE_POSITION) in vec3 position;
-layout(location = DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION) uniform mat4 light_view_projection;
+layout(location = 3) uniform mat4 light_view_projection;
 #if defined(ALPHA_MASK)
 layout(location = DEEPGI_ATTRIBUTE_UV) in vec2 uv;
 layout(location = DEEPGI_ATTRIBUTE_COLOUR) in vec4 colour;

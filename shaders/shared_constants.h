@@ -1,9 +1,12 @@
 // Shared by the C++ host code (runtime/src/shader_shared.hpp) and the GLSL
-// passes, so binding points, enum values and the per-frame uniform block have
-// one definition. Written in the common subset of both languages: #define,
-// #include of another such file, and a struct laid out so that std140 equals
-// the C++ layout (checked by static_assert in shader_shared.hpp). The C++
-// side provides mat4/vec4/ivec4 before including this file.
+// passes, so the uniform block binding points, vertex and G-buffer locations,
+// enum values and the per-frame uniform block have one definition. Texture
+// and image bindings are not here: each shader declares its own, and its
+// pass's .cpp names the same numbers. Written in the common subset of both
+// languages: #define, #include of another such file, and a struct laid out so
+// that std140 equals the C++ layout (checked by static_assert in
+// shader_shared.hpp). The C++ side provides mat4/vec4/ivec4 before including
+// this file.
 #ifndef DEEPGI_SHARED_CONSTANTS_H
 #define DEEPGI_SHARED_CONSTANTS_H
 
@@ -12,44 +15,6 @@
 // Uniform block binding points.
 #define DEEPGI_UBO_FRAME 0
 #define DEEPGI_UBO_PASS 1  // the running pass's own block (pass_parameters.h)
-
-// Texture units (sampler bindings).
-#define DEEPGI_UNIT_GBUFFER_NORMAL 0
-#define DEEPGI_UNIT_GBUFFER_ALBEDO 1
-#define DEEPGI_UNIT_GBUFFER_EMISSIVE 2
-#define DEEPGI_UNIT_GBUFFER_MOTION 3
-#define DEEPGI_UNIT_GBUFFER_DEPTH 4
-#define DEEPGI_UNIT_REFERENCE_DEPTH 5  // layer-0 depth the second layer compares against
-#define DEEPGI_UNIT_SHADOW_MAP 6
-#define DEEPGI_UNIT_DIRECT_LIGHT 7
-#define DEEPGI_UNIT_COMPOSE 8
-#define DEEPGI_UNIT_BASE_COLOUR 9
-#define DEEPGI_UNIT_DEPTH_PYRAMID 10  // RG32F with MIPs: linear depth of layer 0 (R) and 1 (G); 0 = no surface
-#define DEEPGI_UNIT_AO 11             // ambient visibility (R), raw or blurred
-#define DEEPGI_UNIT_BLUR_SOURCE 12    // whatever the bilateral blur is smoothing
-#define DEEPGI_UNIT_AO_RAW 13         // debug view only
-#define DEEPGI_UNIT_RADIOSITY 14      // RGBA16F: E (rgb) and confidence (a) of layer 0, blurred
-#define DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0 15  // last frame's E of layer 0 (bounces)
-#define DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1 16  // last frame's E of layer 1 (bounces)
-#define DEEPGI_UNIT_RADIOSITY_RAW_LAYER0 17       // this frame's E of layer 0 (debug view)
-#define DEEPGI_UNIT_RADIOSITY_RAW_LAYER1 18       // this frame's E of layer 1 (debug view)
-#define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY 19      // last frame's depth + normal key (temporal filter)
-#define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1 20  // the same for layer 1 (prepare pass)
-#define DEEPGI_UNIT_RADIOSITY_RADIANCE 21  // RGBA16F array with MIPs: prepared outgoing radiance B per layer
-#define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
-#define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
-#define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
-#define DEEPGI_UNIT_BLUR_SECOND_SOURCE 25  // the bilateral blur's second signal, same weights
-#define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
-#define DEEPGI_UNIT_SHADOW_CUBE 27         // point light: depth cube map, one perspective face per axis
-#define DEEPGI_UNIT_AO_TEMPORAL 28         // temporally filtered visibility (debug view)
-#define DEEPGI_UNIT_BACKFACE_DEPTH 29      // DEPTH32F array, reversed Z: per layer, the nearest back face behind it (the march)
-
-// Image units (compute shaders).
-#define DEEPGI_IMAGE_PYRAMID_SOURCE 0
-#define DEEPGI_IMAGE_PYRAMID_DESTINATION 1
-#define DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE 2
-#define DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION 3
 
 // Vertex attribute locations.
 #define DEEPGI_ATTRIBUTE_POSITION 0
@@ -63,20 +28,13 @@
 #define DEEPGI_GBUFFER_OUTPUT_EMISSIVE 2
 #define DEEPGI_GBUFFER_OUTPUT_MOTION 3
 
-// Explicit uniform locations of per-draw and per-pass values.
+// Explicit uniform locations of the material values draw_scene sets (a
+// pass's own uniforms have locations its shader and .cpp choose).
 #define DEEPGI_UNIFORM_BASE_COLOUR_FACTOR 0
 #define DEEPGI_UNIFORM_EMISSIVE_FACTOR 1
 #define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
-#define DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION 3
-#define DEEPGI_UNIFORM_LAYER 4
 #define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
 #define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
-#define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
-#define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
-#define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
-#define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
-#define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
-#define DEEPGI_UNIFORM_BACKFACE_LAYER 39        // int: the G-buffer layer the back faces must lie behind
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

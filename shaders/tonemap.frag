@@ -5,7 +5,8 @@
 #include "gbuffer_encoding.glsl"
 #include "tonemap_curve.glsl"
 
-layout(binding = DEEPGI_UNIT_COMPOSE) uniform sampler2D composed_radiance;
+// Bindings are this shader's own; tonemap_pass.cpp binds the same numbers.
+layout(binding = 8) uniform sampler2D composed_radiance;
 layout(location = 0) out vec4 out_colour;
 
 void main() {

@@ -103,10 +103,6 @@ void begin_fullscreen(GLuint framebuffer, int width, int height);
 void draw_fullscreen_triangle(GLuint empty_vertex_array);
 // A framebuffer whose colour attachment 0 is level 0 of `texture` (2-D).
 gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what);
-// Reads of every G-buffer texture (both layers) and the direct light at
-// their units of shared_constants.h, for the passes that read the whole
-// surface description: the radiosity prepare pass and the debug view.
-std::vector<PassRead> gbuffer_and_direct_light_reads();
 // Names a texture for captures: "<pass> <what>".
 void label_texture(const gl::Texture& texture, std::string_view pass, std::string_view what);
 

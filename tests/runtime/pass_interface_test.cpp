@@ -318,7 +318,7 @@ class NeedyPass final : public Pass {
 public:
     std::string_view name() const override { return "needy"; }
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_AO, "nothing.here"}}, .writes = {}};
+        return {.reads = {{0, "nothing.here"}}, .writes = {}};
     }
     void resize(FrameResources&) override {}
     void run(FrameResources&) override {}

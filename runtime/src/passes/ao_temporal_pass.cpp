@@ -9,6 +9,15 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of ao_temporal.frag.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint motion_binding = 3;
+constexpr GLuint depth_binding = 10;
+constexpr GLuint raw_binding = 13;
+constexpr GLuint history_binding = 11;
+constexpr GLuint history_key_binding = 19;
+constexpr GLint alpha_location = 29;  // uniform: the temporal blend weight
+
 constexpr const char* visibility_history = "ao-temporal";  // x: filtered, y: partial
 constexpr const char* key_history = "ao-temporal-key";
 
@@ -20,10 +29,10 @@ public:
     std::string_view name() const override { return "ao_temporal"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-                          {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"},
-                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                          {DEEPGI_UNIT_AO_RAW, "ao.raw"}},
+        return {.reads = {{normal_binding, "gbuffer.normal"},
+                          {motion_binding, "gbuffer.motion"},
+                          {depth_binding, "depth_pyramid"},
+                          {raw_binding, "ao.raw"}},
                 .writes = {"ao.temporal"}};
     }
 
@@ -52,9 +61,9 @@ public:
         const GLuint program = program_.get();
         const HistoryPair& visibility = frame.history(visibility_history);
         glUseProgram(program);
-        glProgramUniform1f(program, DEEPGI_UNIFORM_RADIOSITY_ALPHA, frame.settings->ao.alpha);
-        glBindTextureUnit(DEEPGI_UNIT_AO, visibility.previous());
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY, frame.history(key_history).previous());
+        glProgramUniform1f(program, alpha_location, frame.settings->ao.alpha);
+        glBindTextureUnit(history_binding, visibility.previous());
+        glBindTextureUnit(history_key_binding, frame.history(key_history).previous());
         begin_fullscreen(framebuffers_[visibility.written_slot].get(), width_, height_);
         draw_fullscreen_triangle(frame.empty_vertex_array);
         written_ = visibility.written();

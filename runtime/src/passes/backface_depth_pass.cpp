@@ -13,6 +13,13 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of backface_depth.frag (the material's base colour is
+// alpha_mask.glsl's, through draw_scene_depth).
+constexpr GLuint depth_binding = 4;
+constexpr GLuint base_colour_binding = 9;
+// The G-buffer layer the back faces must lie behind (uniform location).
+constexpr GLint layer_location = 39;
+
 class BackfaceDepthPass final : public Pass {
 public:
     explicit BackfaceDepthPass(const ShaderLoader& loader)
@@ -25,8 +32,7 @@ public:
     std::string_view name() const override { return "backface_depth"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"}},
-                .writes = {"backface.depth"}};
+        return {.reads = {{depth_binding, "gbuffer.depth"}}, .writes = {"backface.depth"}};
     }
 
     bool enabled(const RenderSettings& settings) const override {
@@ -63,8 +69,9 @@ public:
             glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &nothing_hit);
             glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
             for (GLuint program : {program_.get(), masked_program_.get()})
-                glProgramUniform1i(program, DEEPGI_UNIFORM_BACKFACE_LAYER, layer);
-            draw_scene_depth(*frame.scene_gpu, program_.get(), masked_program_.get());
+                glProgramUniform1i(program, layer_location, layer);
+            draw_scene_depth(*frame.scene_gpu, program_.get(), masked_program_.get(),
+                             base_colour_binding);
         }
         glCullFace(GL_BACK);
         frame.publish("backface.depth", depth_.get());

@@ -17,6 +17,15 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of bilateral_blur_key.frag (normal, depth) and
+// bilateral_blur.frag (the sources and the key).
+constexpr GLuint normal_binding = 0;
+constexpr GLuint depth_binding = 10;
+constexpr GLuint source_bindings[max_blur_sources] = {12, 25};
+constexpr GLuint key_binding = 26;
+// ivec2 uniform: (1, 0) horizontal, (0, 1) vertical.
+constexpr GLint direction_location = 23;
+
 void check_parameters(const BilateralBlurParameters& parameters) {
     auto positive = [](float value) { return std::isfinite(value) && value > 0.0f; };
     if (!positive(parameters.depth_tolerance) || !positive(parameters.normal_power) ||
@@ -49,10 +58,10 @@ public:
     PassDeclaration declaration(const RenderSettings&) const override {
         // run_bilateral_blur() binds the sources and keys again itself, since
         // its horizontal step rebinds the source units to its intermediates.
-        return {.reads = {{DEEPGI_UNIT_BLUR_SOURCE, "ao.temporal"},
-                          {DEEPGI_UNIT_BLUR_SECOND_SOURCE, "radiosity.irradiance.layer0"},
-                          {DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}},
+        return {.reads = {{source_bindings[0], "ao.temporal"},
+                          {source_bindings[1], "radiosity.irradiance.layer0"},
+                          {depth_binding, "depth_pyramid"},
+                          {normal_binding, "gbuffer.normal"}},
                 .writes = {"ao.blurred", "radiosity.blurred"}};
     }
 
@@ -147,10 +156,8 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
     if (int(sources.size()) != blur.source_count)
         throw InputError(fmt::format("the bilateral blur has {} sources but got {} textures",
                                      blur.source_count, sources.size()));
-    constexpr GLuint source_units[max_blur_sources] = {DEEPGI_UNIT_BLUR_SOURCE,
-                                                       DEEPGI_UNIT_BLUR_SECOND_SOURCE};
-    glBindTextureUnit(DEEPGI_UNIT_DEPTH_PYRAMID, depth_pyramid);
-    glBindTextureUnit(DEEPGI_UNIT_GBUFFER_NORMAL, gbuffer_normal);
+    glBindTextureUnit(depth_binding, depth_pyramid);
+    glBindTextureUnit(normal_binding, gbuffer_normal);
     glUseProgram(blur.key_program.get());
     begin_fullscreen(blur.key_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
@@ -161,18 +168,19 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
                      .normal_power = blur.parameters.normal_power,
                      .plane_tolerance = blur.parameters.plane_tolerance,
                      .world_extent = blur.world_extent});
-    glBindTextureUnit(DEEPGI_UNIT_BLUR_KEY, blur.key.get());
+    glBindTextureUnit(key_binding, blur.key.get());
 
     for (int i = 0; i < blur.source_count; ++i)
-        glBindTextureUnit(source_units[i], sources[std::size_t(i)]);
-    glProgramUniform2i(program, DEEPGI_UNIFORM_BLUR_DIRECTION, 1, 0);
+        glBindTextureUnit(source_bindings[i], sources[std::size_t(i)]);
+    glProgramUniform2i(program, direction_location, 1, 0);
     begin_fullscreen(blur.horizontal_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
 
     const GLuint horizontal[max_blur_sources] = {blur.horizontal.get(),
                                                  blur.second_horizontal.get()};
-    for (int i = 0; i < blur.source_count; ++i) glBindTextureUnit(source_units[i], horizontal[i]);
-    glProgramUniform2i(program, DEEPGI_UNIFORM_BLUR_DIRECTION, 0, 1);
+    for (int i = 0; i < blur.source_count; ++i)
+        glBindTextureUnit(source_bindings[i], horizontal[i]);
+    glProgramUniform2i(program, direction_location, 0, 1);
     begin_fullscreen(blur.output_framebuffer.get(), blur.width, blur.height);
     draw_fullscreen_triangle(empty_vertex_array);
 }

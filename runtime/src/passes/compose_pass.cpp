@@ -8,6 +8,17 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of compose.frag.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint albedo_binding = 1;
+constexpr GLuint emissive_binding = 2;
+constexpr GLuint depth_binding = 4;
+constexpr GLuint direct_light_binding = 7;
+constexpr GLuint ao_binding = 11;
+constexpr GLuint radiosity_binding = 14;
+// ivec3 uniform: AO, radiosity, environment (0: left out).
+constexpr GLint terms_location = 36;
+
 class ComposePass final : public Pass {
 public:
     explicit ComposePass(const ShaderLoader& loader)
@@ -16,13 +27,13 @@ public:
     std::string_view name() const override { return "compose"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"},
-                          {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
-                          {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
-                          {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
-                          {DEEPGI_UNIT_AO, "ao.blurred"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-                          {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"}},
+        return {.reads = {{direct_light_binding, "direct_light.radiance"},
+                          {albedo_binding, "gbuffer.albedo"},
+                          {emissive_binding, "gbuffer.emissive"},
+                          {depth_binding, "gbuffer.depth"},
+                          {ao_binding, "ao.blurred"},
+                          {normal_binding, "gbuffer.normal"},
+                          {radiosity_binding, "radiosity.blurred"}},
                 .writes = {"compose.radiance"}};
     }
 
@@ -37,9 +48,8 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(framebuffer_.get(), width_, height_);
         const RenderSettings& settings = *frame.settings;
-        glProgramUniform3i(program_.get(), DEEPGI_UNIFORM_COMPOSE_TERMS,
-                           settings.ao.enabled ? 1 : 0, settings.radiosity.enabled ? 1 : 0,
-                           settings.environment ? 1 : 0);
+        glProgramUniform3i(program_.get(), terms_location, settings.ao.enabled ? 1 : 0,
+                           settings.radiosity.enabled ? 1 : 0, settings.environment ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());

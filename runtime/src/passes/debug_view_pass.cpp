@@ -7,6 +7,21 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of debug_view.frag.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint albedo_binding = 1;
+constexpr GLuint emissive_binding = 2;
+constexpr GLuint motion_binding = 3;
+constexpr GLuint depth_binding = 4;
+constexpr GLuint direct_light_binding = 7;
+constexpr GLuint ao_blurred_binding = 11;
+constexpr GLuint ao_raw_binding = 13;
+constexpr GLuint radiosity_blurred_binding = 14;
+constexpr GLuint irradiance_layer0_binding = 17;
+constexpr GLuint irradiance_layer1_binding = 18;
+constexpr GLuint prepared_radiance_binding = 21;
+constexpr GLuint ao_temporal_binding = 28;
+
 class DebugViewPass final : public Pass {
 public:
     explicit DebugViewPass(const ShaderLoader& loader)
@@ -15,18 +30,20 @@ public:
     std::string_view name() const override { return "debug_view"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        std::vector<PassRead> reads = gbuffer_and_direct_light_reads();
-        reads.insert(reads.end(),
-                     {{DEEPGI_UNIT_AO_RAW, "ao.raw"},
-                      {DEEPGI_UNIT_AO, "ao.blurred"},
-                      {DEEPGI_UNIT_AO_TEMPORAL, "ao.temporal"},
-                      {DEEPGI_UNIT_RADIOSITY_RADIANCE, "radiosity_prepare.radiance"},
-                      {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"},
-                      // The temporally filtered E of each layer, at the units the
-                      // radiosity pass uses for the raw gather.
-                      {DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, "radiosity.irradiance.layer0"},
-                      {DEEPGI_UNIT_RADIOSITY_RAW_LAYER1, "radiosity.irradiance.layer1"}});
-        return {.reads = std::move(reads), .writes = {}};
+        return {.reads = {{normal_binding, "gbuffer.normal"},
+                          {albedo_binding, "gbuffer.albedo"},
+                          {emissive_binding, "gbuffer.emissive"},
+                          {motion_binding, "gbuffer.motion"},
+                          {depth_binding, "gbuffer.depth"},
+                          {direct_light_binding, "direct_light.radiance"},
+                          {ao_raw_binding, "ao.raw"},
+                          {ao_blurred_binding, "ao.blurred"},
+                          {ao_temporal_binding, "ao.temporal"},
+                          {prepared_radiance_binding, "radiosity_prepare.radiance"},
+                          {radiosity_blurred_binding, "radiosity.blurred"},
+                          {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
+                          {irradiance_layer1_binding, "radiosity.irradiance.layer1"}},
+                .writes = {}};
     }
     void resize(FrameResources&) override {}
     bool enabled(const RenderSettings& settings) const override {

@@ -14,6 +14,11 @@ namespace deepgi {
 
 namespace {
 
+// Bindings of depth_pyramid.comp: a texture, and two image units.
+constexpr GLuint depth_binding = 4;
+constexpr GLuint source_image = 0;
+constexpr GLuint destination_image = 1;
+
 constexpr int group_size = 8;  // local_size of depth_pyramid.comp
 
 int level_extent(int extent, int level) {
@@ -35,8 +40,7 @@ public:
     std::string_view name() const override { return "depth_pyramid"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"}},
-                .writes = {"depth_pyramid"}};
+        return {.reads = {{depth_binding, "gbuffer.depth"}}, .writes = {"depth_pyramid"}};
     }
 
     void resize(FrameResources& frame) override {
@@ -60,17 +64,16 @@ public:
     void run(FrameResources& frame) override {
         const GLuint pyramid = pyramid_.get();
         glUseProgram(base_level_.get());
-        glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                           GL_RG32F);
+        glBindImageTexture(destination_image, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
         dispatch_over(width_, height_);
 
         glUseProgram(reduce_.get());
         for (int level = 1; level < levels_; ++level) {
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            glBindImageTexture(DEEPGI_IMAGE_PYRAMID_SOURCE, pyramid, level - 1, GL_FALSE, 0,
-                               GL_READ_ONLY, GL_RG32F);
-            glBindImageTexture(DEEPGI_IMAGE_PYRAMID_DESTINATION, pyramid, level, GL_FALSE, 0,
-                               GL_WRITE_ONLY, GL_RG32F);
+            glBindImageTexture(source_image, pyramid, level - 1, GL_FALSE, 0, GL_READ_ONLY,
+                               GL_RG32F);
+            glBindImageTexture(destination_image, pyramid, level, GL_FALSE, 0, GL_WRITE_ONLY,
+                               GL_RG32F);
             dispatch_over(level_extent(width_, level), level_extent(height_, level));
         }
         // Later passes sample the pyramid with texelFetch; tests read it back.

@@ -9,6 +9,15 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of direct_light.frag (the shadow maps' are the ones it
+// gives lighting.glsl).
+constexpr GLuint normal_binding = 0;
+constexpr GLuint albedo_binding = 1;
+constexpr GLuint depth_binding = 4;
+constexpr GLuint shadow_map_binding = 6;
+constexpr GLuint shadow_cube_binding = 27;
+constexpr GLint layer_location = 4;  // the G-buffer layer lit by this draw
+
 class DirectLightPass final : public Pass {
 public:
     explicit DirectLightPass(const ShaderLoader& loader)
@@ -17,11 +26,11 @@ public:
     std::string_view name() const override { return "direct_light"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-                          {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
-                          {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
-                          {DEEPGI_UNIT_SHADOW_MAP, "shadow.depth"},
-                          {DEEPGI_UNIT_SHADOW_CUBE, "shadow.cube"}},
+        return {.reads = {{normal_binding, "gbuffer.normal"},
+                          {albedo_binding, "gbuffer.albedo"},
+                          {depth_binding, "gbuffer.depth"},
+                          {shadow_map_binding, "shadow.depth"},
+                          {shadow_cube_binding, "shadow.cube"}},
                 .writes = {"direct_light.radiance"}};
     }
 
@@ -43,7 +52,7 @@ public:
         glUseProgram(program_.get());
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(layer_framebuffers_[layer].get(), width_, height_);
-            glProgramUniform1i(program_.get(), DEEPGI_UNIFORM_LAYER, layer);
+            glProgramUniform1i(program_.get(), layer_location, layer);
             draw_fullscreen_triangle(frame.empty_vertex_array);
         }
         frame.publish("direct_light.radiance", radiance_.get());

@@ -37,13 +37,4 @@ void label_texture(const gl::Texture& texture, std::string_view pass, std::strin
     glObjectLabel(GL_TEXTURE, texture.get(), -1, label.c_str());
 }
 
-std::vector<PassRead> gbuffer_and_direct_light_reads() {
-    return {{DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-            {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
-            {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
-            {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"},
-            {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
-            {DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"}};
-}
-
 }  // namespace deepgi

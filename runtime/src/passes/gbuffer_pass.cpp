@@ -15,6 +15,11 @@ constexpr GLenum all_outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL
                                   GL_COLOR_ATTACHMENT3};
 constexpr const char* layer0_depth_history = "layer0-depth";
 
+// Texture bindings of gbuffer.frag: the layer-0 depth the second layer is
+// compared against, and the materials' textures (bound by draw_scene).
+constexpr GLuint reference_depth_binding = 5;
+constexpr MaterialTextureBindings material_bindings = {.base_colour = 9, .emissive = 24};
+
 struct GBufferTargets {
     gl::Texture normal;    // RG16F array, octahedral camera-space normal
     gl::Texture albedo;    // RGBA8 array, sRGB-encoded by the shader
@@ -131,7 +136,7 @@ public:
             clear_gbuffer(first_layer_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, first_layer_framebuffer_.get());
             glUseProgram(peel_first_layer_.get());
-            draw_scene(scene, peel_first_layer_.get());
+            draw_scene(scene, peel_first_layer_.get(), material_bindings);
             copy_layer0_depth(layer0_depth.written());
 
             clear_gbuffer(second_layer_framebuffer_, 4);
@@ -140,17 +145,17 @@ public:
             const float zero[4] = {0, 0, 0, 0};
             glClearTexSubImage(targets_.emissive.get(), 0, 0, 0, 1, width_, height_, 1, GL_RGBA,
                                GL_FLOAT, zero);
-            glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, layer0_depth.written());
+            glBindTextureUnit(reference_depth_binding, layer0_depth.written());
             glBindFramebuffer(GL_FRAMEBUFFER, second_layer_framebuffer_.get());
             glUseProgram(peel_second_layer_.get());
-            draw_scene(scene, peel_second_layer_.get());
+            draw_scene(scene, peel_second_layer_.get(), material_bindings);
         } else {
             // Previous / reproject: compare against the previous frame's layer 0.
-            glBindTextureUnit(DEEPGI_UNIT_REFERENCE_DEPTH, layer0_depth.previous());
+            glBindTextureUnit(reference_depth_binding, layer0_depth.previous());
             clear_gbuffer(layered_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
             glUseProgram(single_pass_.get());
-            draw_scene(scene, single_pass_.get());
+            draw_scene(scene, single_pass_.get(), material_bindings);
             copy_layer0_depth(layer0_depth.written());
         }
         frame.publish("gbuffer.normal", targets_.normal.get());

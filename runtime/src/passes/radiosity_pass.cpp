@@ -14,6 +14,21 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of radiosity.frag (the gather) and radiosity_temporal.frag
+// (the temporal filter), which share the G-buffer's and the pyramid's.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint motion_binding = 3;
+constexpr GLuint depth_binding = 10;
+constexpr GLuint raw_binding = 17;
+constexpr GLuint history_binding = 15;
+constexpr GLuint history_key_binding = 19;
+constexpr GLuint radiance_binding = 21;
+constexpr GLuint prepared_normal_binding = 22;
+constexpr GLuint history_partial_binding = 23;
+// Uniform locations: the layer (both shaders), the temporal blend weight.
+constexpr GLint layer_location = 4;
+constexpr GLint alpha_location = 29;
+
 std::string history_name(int layer) {
     return fmt::format("radiosity-layer{}", layer);
 }
@@ -33,11 +48,11 @@ public:
     std::string_view name() const override { return "radiosity"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                          {DEEPGI_UNIT_RADIOSITY_RADIANCE, "radiosity_prepare.radiance"},
-                          {DEEPGI_UNIT_RADIOSITY_NORMAL, "radiosity_prepare.normal"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-                          {DEEPGI_UNIT_GBUFFER_MOTION, "gbuffer.motion"}},
+        return {.reads = {{depth_binding, "depth_pyramid"},
+                          {radiance_binding, "radiosity_prepare.radiance"},
+                          {prepared_normal_binding, "radiosity_prepare.normal"},
+                          {normal_binding, "gbuffer.normal"},
+                          {motion_binding, "gbuffer.motion"}},
                 .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",
                            "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"}};
     }
@@ -87,23 +102,22 @@ public:
                           .unused1 = 0.0f});
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
-            glProgramUniform1i(gather, DEEPGI_UNIFORM_LAYER, layer);
+            glProgramUniform1i(gather, layer_location, layer);
             draw_fullscreen_triangle(frame.empty_vertex_array);
         }
 
         const GLuint temporal = temporal_.get();
         glUseProgram(temporal);
-        glProgramUniform1f(temporal, DEEPGI_UNIFORM_RADIOSITY_ALPHA, settings.alpha);
+        glProgramUniform1f(temporal, alpha_location, settings.alpha);
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             const HistoryPair& irradiance = frame.history(history_name(layer));
-            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, raw_[layer].get());
-            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0, irradiance.previous());
-            glBindTextureUnit(DEEPGI_UNIT_HISTORY_PARTIAL,
+            glBindTextureUnit(raw_binding, raw_[layer].get());
+            glBindTextureUnit(history_binding, irradiance.previous());
+            glBindTextureUnit(history_partial_binding,
                               frame.history(partial_name(layer)).previous());
-            glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY,
-                              frame.history(key_name(layer)).previous());
+            glBindTextureUnit(history_key_binding, frame.history(key_name(layer)).previous());
             begin_fullscreen(framebuffers_[layer][irradiance.written_slot].get(), width_, height_);
-            glProgramUniform1i(temporal, DEEPGI_UNIFORM_LAYER, layer);
+            glProgramUniform1i(temporal, layer_location, layer);
             draw_fullscreen_triangle(frame.empty_vertex_array);
             written_[layer] = irradiance.written();
             frame.publish(fmt::format("radiosity.raw.layer{}", layer), raw_[layer].get());

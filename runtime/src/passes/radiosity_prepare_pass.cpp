@@ -17,6 +17,25 @@ namespace {
 
 constexpr int group_size = 8;  // local_size of radiosity_prepare.comp
 
+// Bindings of radiosity_prepare.comp. The base level samples the G-buffer,
+// the direct light and last frame's E with its keys; every level writes the
+// two destination images, and the levels above the base read the level below
+// through the source images.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint albedo_binding = 1;
+constexpr GLuint emissive_binding = 2;
+constexpr GLuint motion_binding = 3;
+constexpr GLuint depth_binding = 4;
+constexpr GLuint direct_light_binding = 7;
+constexpr GLuint previous_layer0_binding = 15;
+constexpr GLuint previous_layer1_binding = 16;
+constexpr GLuint history_key_layer0_binding = 19;
+constexpr GLuint history_key_layer1_binding = 20;
+constexpr GLuint radiance_source_image = 0;
+constexpr GLuint radiance_destination_image = 1;
+constexpr GLuint normal_source_image = 2;
+constexpr GLuint normal_destination_image = 3;
+
 int level_extent(int extent, int level) {
     return std::max(1, extent >> level);
 }
@@ -41,7 +60,12 @@ public:
     std::string_view name() const override { return "radiosity_prepare"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = gbuffer_and_direct_light_reads(),
+        return {.reads = {{normal_binding, "gbuffer.normal"},
+                          {albedo_binding, "gbuffer.albedo"},
+                          {emissive_binding, "gbuffer.emissive"},
+                          {motion_binding, "gbuffer.motion"},
+                          {depth_binding, "gbuffer.depth"},
+                          {direct_light_binding, "direct_light.radiance"}},
                 .writes = {"radiosity_prepare.radiance", "radiosity_prepare.normal"}};
     }
 
@@ -66,25 +90,20 @@ public:
                           .unused0 = 0.0f,
                           .unused1 = 0.0f});
         // Last frame's filtered E and its keys (radiosity_pass.cpp owns them).
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER0,
-                          frame.history("radiosity-layer0").previous());
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_PREVIOUS_LAYER1,
-                          frame.history("radiosity-layer1").previous());
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY,
+        glBindTextureUnit(previous_layer0_binding, frame.history("radiosity-layer0").previous());
+        glBindTextureUnit(previous_layer1_binding, frame.history("radiosity-layer1").previous());
+        glBindTextureUnit(history_key_layer0_binding,
                           frame.history("radiosity-key-layer0").previous());
-        glBindTextureUnit(DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1,
+        glBindTextureUnit(history_key_layer1_binding,
                           frame.history("radiosity-key-layer1").previous());
-        bind_level(0, DEEPGI_IMAGE_PYRAMID_DESTINATION, DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION,
-                   GL_WRITE_ONLY);
+        bind_level(0, radiance_destination_image, normal_destination_image, GL_WRITE_ONLY);
         dispatch_over(width_, height_);
 
         glUseProgram(reduce_.get());
         for (int level = 1; level < levels_; ++level) {
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            bind_level(level - 1, DEEPGI_IMAGE_PYRAMID_SOURCE, DEEPGI_IMAGE_PREPARE_NORMAL_SOURCE,
-                       GL_READ_ONLY);
-            bind_level(level, DEEPGI_IMAGE_PYRAMID_DESTINATION,
-                       DEEPGI_IMAGE_PREPARE_NORMAL_DESTINATION, GL_WRITE_ONLY);
+            bind_level(level - 1, radiance_source_image, normal_source_image, GL_READ_ONLY);
+            bind_level(level, radiance_destination_image, normal_destination_image, GL_WRITE_ONLY);
             dispatch_over(level_extent(width_, level), level_extent(height_, level));
         }
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

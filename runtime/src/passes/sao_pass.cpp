@@ -8,6 +8,11 @@ namespace deepgi {
 
 namespace {
 
+// Texture bindings of sao.frag.
+constexpr GLuint normal_binding = 0;
+constexpr GLuint depth_binding = 10;
+constexpr GLuint backface_binding = 29;
+
 class SaoPass final : public Pass {
 public:
     explicit SaoPass(const ShaderLoader& loader)
@@ -17,11 +22,11 @@ public:
     std::string_view name() const override { return "sao"; }
 
     PassDeclaration declaration(const RenderSettings& settings) const override {
-        std::vector<PassRead> reads = {{DEEPGI_UNIT_DEPTH_PYRAMID, "depth_pyramid"},
-                                       {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"}};
+        std::vector<PassRead> reads = {{depth_binding, "depth_pyramid"},
+                                       {normal_binding, "gbuffer.normal"}};
         // Only the march ends each solid at its back face.
         if (settings.ao.method == AoMethod::march)
-            reads.push_back({DEEPGI_UNIT_BACKFACE_DEPTH, "backface.depth"});
+            reads.push_back({backface_binding, "backface.depth"});
         return {.reads = std::move(reads), .writes = {"ao.raw"}};
     }
 

@@ -13,6 +13,11 @@ namespace deepgi {
 
 namespace {
 
+// Where shadow_mask.frag (alpha_mask.glsl) samples a masked material's base colour.
+constexpr GLuint base_colour_binding = 9;
+// shadow.vert's uniform location of the light's view-projection.
+constexpr GLint light_view_projection_location = 3;
+
 // The cube map faces in GL's order (+X, -X, +Y, -Y, +Z, -Z): each face's
 // view direction and the up vector that makes its image the texture's
 // (s, t) layout for that face.
@@ -145,9 +150,9 @@ private:
 
     void draw_casters(const SceneGpu& scene, const glm::mat4& light_view_projection) {
         for (GLuint program : {program_.get(), masked_program_.get()})
-            glProgramUniformMatrix4fv(program, DEEPGI_UNIFORM_LIGHT_VIEW_PROJECTION, 1, GL_FALSE,
+            glProgramUniformMatrix4fv(program, light_view_projection_location, 1, GL_FALSE,
                                       &light_view_projection[0][0]);
-        draw_scene_depth(scene, program_.get(), masked_program_.get());
+        draw_scene_depth(scene, program_.get(), masked_program_.get(), base_colour_binding);
     }
 
     gl::Program program_;

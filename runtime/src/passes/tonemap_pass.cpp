@@ -6,6 +6,9 @@ namespace deepgi {
 
 namespace {
 
+// Texture binding of tonemap.frag.
+constexpr GLuint radiance_binding = 8;
+
 class TonemapPass final : public Pass {
 public:
     explicit TonemapPass(const ShaderLoader& loader)
@@ -14,7 +17,7 @@ public:
     std::string_view name() const override { return "tonemap"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_COMPOSE, "compose.radiance"}}, .writes = {}};
+        return {.reads = {{radiance_binding, "compose.radiance"}}, .writes = {}};
     }
     void resize(FrameResources&) override {}  // writes the frame's display image
     bool enabled(const RenderSettings& settings) const override {

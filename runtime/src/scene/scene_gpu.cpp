@@ -74,36 +74,36 @@ namespace {
 
 // Material m's base colour as gbuffer.frag and alpha_mask.glsl read it: the
 // factor, whether there is a texture, and the texture with its sampler.
-void set_base_colour(const SceneGpu& scene, std::size_t m, GLuint program) {
+void set_base_colour(const SceneGpu& scene, std::size_t m, GLuint program, GLuint binding) {
     const Material& material = scene.materials[m];
     glProgramUniform4fv(program, DEEPGI_UNIFORM_BASE_COLOUR_FACTOR, 1, &material.base_colour.x);
     const bool textured = material.base_colour_texture >= 0;
     glProgramUniform1i(program, DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE, textured ? 1 : 0);
     if (textured) {
-        glBindTextureUnit(DEEPGI_UNIT_BASE_COLOUR,
-                          scene.textures[std::size_t(material.base_colour_texture)].get());
-        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, scene.base_colour_samplers[m].get());
+        glBindTextureUnit(binding, scene.textures[std::size_t(material.base_colour_texture)].get());
+        glBindSampler(binding, scene.base_colour_samplers[m].get());
     }
 }
 
 }  // namespace
 
-void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
+void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
+                MaterialTextureBindings bindings) {
     glBindVertexArray(scene.vertex_array.get());
     for (const auto& batch : scene.batches) {
         if (program_for_materials != 0) {
             const std::size_t m = std::size_t(batch.material);
             const Material& material = scene.materials[m];
-            set_base_colour(scene, m, program_for_materials);
+            set_base_colour(scene, m, program_for_materials, bindings.base_colour);
             glProgramUniform3fv(program_for_materials, DEEPGI_UNIFORM_EMISSIVE_FACTOR, 1,
                                 &material.emissive.x);
             const bool emissive_textured = material.emissive_texture >= 0;
             glProgramUniform1i(program_for_materials, DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE,
                                emissive_textured ? 1 : 0);
             if (emissive_textured) {
-                glBindTextureUnit(DEEPGI_UNIT_EMISSIVE,
+                glBindTextureUnit(bindings.emissive,
                                   scene.textures[std::size_t(material.emissive_texture)].get());
-                glBindSampler(DEEPGI_UNIT_EMISSIVE, scene.emissive_samplers[m].get());
+                glBindSampler(bindings.emissive, scene.emissive_samplers[m].get());
             }
             glProgramUniform1f(program_for_materials, DEEPGI_UNIFORM_ALPHA_CUTOFF,
                                material.alpha_cutoff);
@@ -112,12 +112,13 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials) {
     }
     // Other passes read their textures with the textures' own parameters.
     if (program_for_materials != 0) {
-        glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
-        glBindSampler(DEEPGI_UNIT_EMISSIVE, 0);
+        glBindSampler(bindings.base_colour, 0);
+        glBindSampler(bindings.emissive, 0);
     }
 }
 
-void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program) {
+void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program,
+                      GLuint base_colour_binding) {
     const auto is_masked = [&](const DrawBatch& batch) {
         return scene.materials[std::size_t(batch.material)].alpha_cutoff >= 0.0f;
     };
@@ -129,12 +130,12 @@ void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint maske
     for (const auto& batch : scene.batches) {
         if (!is_masked(batch)) continue;
         const std::size_t m = std::size_t(batch.material);
-        set_base_colour(scene, m, masked_program);
+        set_base_colour(scene, m, masked_program, base_colour_binding);
         glProgramUniform1f(masked_program, DEEPGI_UNIFORM_ALPHA_CUTOFF,
                            scene.materials[m].alpha_cutoff);
         draw_batch(batch);
     }
-    glBindSampler(DEEPGI_UNIT_BASE_COLOUR, 0);
+    glBindSampler(base_colour_binding, 0);
 }
 
 }  // namespace deepgi

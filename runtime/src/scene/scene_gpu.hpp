@@ -19,14 +19,25 @@ struct SceneGpu {
 
 SceneGpu upload_scene(const Scene& scene);
 
-// Draws every batch; `per_material` sets material uniforms first when non-null.
-void draw_scene(const SceneGpu& scene, GLuint program_for_materials);
+// Where a program that shades materials samples their textures: the numbers
+// its shader declares, given by the pass that draws with it.
+struct MaterialTextureBindings {
+    GLuint base_colour = 0;
+    GLuint emissive = 0;
+};
+
+// Draws every batch; when `program_for_materials` is non-zero, sets its
+// material uniforms first and binds the material's textures at `bindings`.
+void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
+                MaterialTextureBindings bindings);
 
 // Depth-only drawing that honours glTF alpha masks: opaque batches with
 // `opaque_program`, then alpha-masked ones with `masked_program`, whose
 // fragment shader runs the alpha test (alpha_mask.glsl) on the material
-// uniforms set here. Only masked batches pay for the test's texture read.
-void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program);
+// uniforms set here, its base-colour texture bound at `base_colour_binding`.
+// Only masked batches pay for the test's texture read.
+void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program,
+                      GLuint base_colour_binding);
 
 // Draws one batch's triangles; the caller binds the vertex array and sets uniforms.
 void draw_batch(const DrawBatch& batch);
