@@ -96,6 +96,9 @@ struct Row {
     std::optional<double> get(std::string_view column) const;
 };
 
+// The frame's passes the report times, by the names the frame's timer gives
+// them; each becomes the column "<pass>_ms".
+const std::vector<std::string>& timed_passes();
 // The measured columns, in order; docs/report.md says what each means.
 const std::vector<std::string>& value_columns();
 

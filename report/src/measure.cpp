@@ -1,4 +1,7 @@
-// The report's measurement loop, its error statistics and its file formats.
+// The report's measurement: renders every row's frames, traces the truth once
+// per scene, and hands the images to the comparisons (compare.cpp); the
+// tables are formatted by format.cpp.
+#include "compare.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/reference.hpp"
@@ -14,6 +17,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -117,15 +121,6 @@ struct Frame {
     FloatImage radiosity_blurred;
 };
 
-// The blurred AV as compose uses it: the solid-angle estimate is signed up
-// to there (sao.frag) and compose clamps it to [0, 1], as
-// deepgi_compare_reference does. Raw and temporal AV stay signed: they are
-// the estimator's stages, whose bias the report measures.
-FloatImage clamped_visibility(FloatImage image) {
-    for (float& v : image.pixels) v = std::clamp(v, 0.0f, 1.0f);
-    return image;
-}
-
 Frame read_frame(const Renderer& renderer) {
     return {renderer.read_pass_output("gbuffer-depth-layer0"), renderer.read_pass_output("ao-raw"),
             clamped_visibility(renderer.read_pass_output("ao-blurred")),
@@ -138,99 +133,6 @@ bool has_output(const Renderer& renderer, const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// Pixels inside the viewport (the guard band excluded) where `keep` holds.
-template <class Keep>
-std::vector<std::uint8_t> viewport_mask(int width, int height, int guard, Keep keep) {
-    std::vector<std::uint8_t> mask(std::size_t(width) * std::size_t(height), 0);
-    for (int y = guard; y < height - guard; ++y) {
-        for (int x = guard; x < width - guard; ++x) {
-            mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] = keep(x, y) ? 1 : 0;
-        }
-    }
-    return mask;
-}
-
-double masked_mean(const FloatImage& image, const std::vector<std::uint8_t>& mask) {
-    const ErrorStats stats =
-        compare_images(image,
-                       FloatImage{image.width, image.height, image.channels,
-                                  std::vector<float>(image.pixels.size(), 0.0f)},
-                       mask);
-    return stats.bias;
-}
-
-// Relative to the mean of the converged image: irradiance has no natural
-// unit, and the scenes differ in brightness by orders of magnitude.
-ErrorStats relative(ErrorStats stats, double scale) {
-    if (!(scale > 0.0)) scale = std::numeric_limits<double>::quiet_NaN();
-    stats.mae /= scale;
-    stats.rmse /= scale;
-    stats.bias /= scale;
-    return stats;
-}
-
-FloatImage crop(const FloatImage& image, int guard, const std::vector<std::uint8_t>& mask) {
-    FloatImage out;
-    out.width = image.width - 2 * guard;
-    out.height = image.height - 2 * guard;
-    out.channels = 1;
-    out.pixels.resize(std::size_t(out.width) * std::size_t(out.height));
-    for (int y = 0; y < out.height; ++y) {
-        for (int x = 0; x < out.width; ++x) {
-            const std::size_t source =
-                std::size_t(y + guard) * std::size_t(image.width) + std::size_t(x + guard);
-            out.pixels[std::size_t(y) * std::size_t(out.width) + std::size_t(x)] =
-                mask[source] ? image.pixels[source * std::size_t(image.channels)]
-                             : std::numeric_limits<float>::quiet_NaN();
-        }
-    }
-    return out;
-}
-
-// The open-surface target (docs/deep-sao.md): pixels with nothing within r
-// in the truth (AV >= 0.9999) must keep an estimate of at least 0.99.
-bool is_open(const FloatImage& truth, std::size_t i) {
-    return truth.pixels[i * std::size_t(truth.channels)] >= 0.9999f;
-}
-
-// The open pixels whose neighbours within `reach` pixels (a square) are open
-// too; reach 0: every open pixel. The target counts reach 1 before the blur,
-// where the truth's own Monte Carlo estimate reads 1 next to occluded pixels
-// when an occluder's reach ends inside the pixel, and the blur's radius after
-// it, which rightly averages neighbours' occlusion in, as a blur of the truth
-// would (docs/deep-sao.md, "Current figures").
-std::vector<std::uint8_t> open_region(const FloatImage& truth, int reach) {
-    const int w = truth.width, h = truth.height;
-    std::vector<std::uint8_t> region(std::size_t(w) * std::size_t(h), 0);
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            bool open = true;
-            for (int v = std::max(0, y - reach); open && v <= std::min(h - 1, y + reach); ++v) {
-                for (int u = std::max(0, x - reach); open && u <= std::min(w - 1, x + reach); ++u)
-                    open = is_open(truth, std::size_t(v) * std::size_t(w) + std::size_t(u));
-            }
-            region[std::size_t(y) * std::size_t(w) + std::size_t(x)] = open ? 1 : 0;
-        }
-    }
-    return region;
-}
-
-// Pixels of mask and region, and of those, the ones whose estimate is below 0.99.
-struct OpenCount {
-    long long pixels = 0;
-    long long below = 0;
-};
-OpenCount count_open(const FloatImage& estimate, const std::vector<std::uint8_t>& mask,
-                     const std::vector<std::uint8_t>& region) {
-    OpenCount count;
-    for (std::size_t i = 0; i < mask.size(); ++i) {
-        if (!mask[i] || !region[i]) continue;
-        ++count.pixels;
-        count.below += estimate.pixels[i * std::size_t(estimate.channels)] < 0.99f;
-    }
-    return count;
-}
-
 int nearest(const std::vector<int>& values, int target) {
     int best = values.front();
     for (int v : values) {
@@ -239,209 +141,113 @@ int nearest(const std::vector<int>& values, int target) {
     return best;
 }
 
-}  // namespace
-
-// ---------------------------------------------------------------------------
-
-ErrorStats compare_images(const FloatImage& estimate, const FloatImage& truth,
-                          const std::vector<std::uint8_t>& mask) {
-    if (estimate.width != truth.width || estimate.height != truth.height)
-        throw std::invalid_argument(fmt::format("images differ in size: {}x{} and {}x{}",
-                                                estimate.width, estimate.height, truth.width,
-                                                truth.height));
-    const std::size_t count = std::size_t(truth.width) * std::size_t(truth.height);
-    if (mask.size() != count)
-        throw std::invalid_argument(
-            fmt::format("mask has {} values for {} pixels", mask.size(), count));
-    const int estimate_channels = std::min(estimate.channels, 3);
-    const int truth_channels = std::min(truth.channels, 3);
-    auto value = [](const FloatImage& image, int channels, std::size_t i) {
-        double sum = 0.0;
-        for (int c = 0; c < channels; ++c) sum += image.pixels[i * std::size_t(image.channels) + c];
-        return sum / channels;
-    };
-    ErrorStats stats;
-    double sum_abs = 0.0, sum_squares = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < count; ++i) {
-        if (!mask[i]) continue;
-        const double error =
-            value(estimate, estimate_channels, i) - value(truth, truth_channels, i);
-        sum_abs += std::abs(error);
-        sum_squares += error * error;
-        sum += error;
-        ++stats.pixels;
+// The reference's settings for the report's truth. A fixed ray count per
+// pixel, or with --rays 0 the budgets of `deepgi reference` (rays until the
+// standard error is below their targets), so that the truth's own noise
+// stays out of the error.
+ReferenceSettings reference_settings(const ReportOptions& options, const RenderSettings& settings) {
+    ReferenceSettings reference;
+    reference.render = settings;
+    if (options.rays > 0) {
+        reference.rays.min_rays = options.rays;
+        reference.rays.max_rays = options.rays;
+        reference.rays.target_error = 0.0;
+        reference.irradiance_rays.min_rays = options.rays;
+        reference.irradiance_rays.max_rays = options.rays;
+        reference.irradiance_rays.ceiling_max_rays = options.rays;
+        reference.irradiance_rays.target_relative_error = 0.0;
+        reference.irradiance_rays.target_absolute_error = 0.0;
     }
-    if (stats.pixels == 0) {
-        stats.mae = stats.rmse = stats.bias = std::numeric_limits<double>::quiet_NaN();
-        return stats;
-    }
-    const double n = double(stats.pixels);
-    stats.mae = sum_abs / n;
-    stats.rmse = std::sqrt(sum_squares / n);
-    stats.bias = sum / n;
-    return stats;
+    // One-bounce irradiance within the gather's radius: the rows compare
+    // the first frame after a cut, which has no bounce history, so one
+    // bounce is what it estimates.
+    reference.irradiance = true;
+    reference.radiosity_radius = settings.radiosity.radius;
+    reference.seed = options.seed;
+    reference.threads = options.threads;
+    return reference;
 }
 
-// The frame's passes the report times, by the names the frame's timer gives
-// them; each becomes the column "<pass>_ms". A name the frame does not time
-// stops the report where a row is filled rather than leaving a column empty.
-const std::vector<std::string>& timed_passes() {
-    static const std::vector<std::string> passes = {"sao", "blur", "radiosity"};
-    return passes;
-}
+// What the static frames after a row's cut give: every timed pass's samples,
+// and the errors of what the temporal filters accumulated over a whole
+// rotation cycle.
+struct StaticFrames {
+    std::map<std::string, std::vector<double>> samples;
+    std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal, rad_ref_accum;
+    std::optional<double> open_accum, open_core_accum;
+};
 
-const std::vector<std::string>& value_columns() {
-    static const std::vector<std::string> columns = [] {
-        std::vector<std::string> names = {"discrepancy", "turns"};
-        for (const auto& pass : timed_passes()) names.push_back(pass + "_ms");
-        for (const char* name : {
-                 "conv_raw_mae",
-                 "conv_raw_rmse",
-                 "conv_blur_mae",
-                 "conv_blur_rmse",
-                 "ref_raw_mae",
-                 "ref_raw_rmse",
-                 "ref_raw_bias",
-                 "ref_blur_mae",
-                 "ref_blur_rmse",
-                 "ref_blur_bias",
-                 "ref_temporal_mae",
-                 "ref_temporal_rmse",
-                 "ref_temporal_bias",
-                 "ref_accum_mae",
-                 "ref_accum_rmse",
-                 "ref_accum_bias",
-                 "ref_pixels",
-                 "ref_open_pixels",
-                 "ref_open_raw_below",
-                 "ref_open_blur_below",
-                 "ref_open_accum_below",
-                 "ref_open_core_raw_below",
-                 "ref_open_core_blur_below",
-                 "ref_open_core_accum_below",
-                 "rad_conv_raw_rel_mae",
-                 "rad_conv_raw_rel_rmse",
-                 "rad_conv_blur_rel_mae",
-                 "rad_conv_blur_rel_rmse",
-                 "rad_ref_raw_rel_mae",
-                 "rad_ref_raw_rel_rmse",
-                 "rad_ref_raw_rel_bias",
-                 "rad_ref_blur_rel_mae",
-                 "rad_ref_blur_rel_rmse",
-                 "rad_ref_blur_rel_bias",
-                 "rad_ref_temporal_rel_mae",
-                 "rad_ref_temporal_rel_rmse",
-                 "rad_ref_temporal_rel_bias",
-                 "rad_ref_accum_rel_mae",
-                 "rad_ref_accum_rel_rmse",
-                 "rad_ref_accum_rel_bias",
-             })
-            names.push_back(name);
-        return names;
-    }();
-    return columns;
-}
-
-std::optional<double> Row::get(std::string_view column) const {
-    for (const Value& v : values)
-        if (v.column == column) return v.value;
-    return std::nullopt;
-}
-
-std::string format_csv(const std::vector<Row>& rows) {
-    std::string text = "scene,pattern,taps,layers,ao_method,device";
-    for (const std::string& column : value_columns()) text += "," + column;
-    text += "\n";
-    for (const Row& row : rows) {
-        text += fmt::format("{},{},{},{},{},{}", csv_field(row.scene), csv_field(row.pattern),
-                            row.taps, row.layers, csv_field(row.ao_method), csv_field(row.device));
-        for (const std::string& column : value_columns()) {
-            const auto value = row.get(column);
-            text += value ? fmt::format(",{}", *value) : ",";
+// Continuous static frames after the cut: the timed ones (so history-based
+// passes do what they do in an animation), and at least the rest of a
+// rotation cycle, after which the accumulated errors are read.
+StaticFrames run_static_frames(
+    Renderer& renderer, const Camera& camera, const ReportOptions& options,
+    const FloatImage& truth_visibility, const std::vector<std::uint8_t>& agreed,
+    const std::vector<std::uint8_t>& open_pixels, const std::vector<std::uint8_t>& blur_open_region,
+    const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_irradiance) {
+    StaticFrames after;
+    const int timed_end = options.warmup + options.frames;
+    for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
+        renderer.render(camera);
+        if (i >= options.warmup && i < timed_end) {
+            for (const auto& timing : renderer.last_timings())
+                after.samples[timing.pass].push_back(timing.milliseconds);
         }
-        text += "\n";
-    }
-    return text;
-}
-
-namespace {
-std::string json_string(std::string_view text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            out += fmt::format("\\u{:04x}", int(c));
-        } else {
-            out += c;
+        if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
+        if (has_output(renderer, kTemporalAoOutput)) {
+            after.ref_temporal = compare_images(renderer.read_pass_output(kTemporalAoOutput),
+                                                truth_visibility, agreed);
         }
-    }
-    return out + "\"";
-}
-}  // namespace
-
-namespace {
-std::string json_number(double value) {
-    return std::isfinite(value) ? fmt::format("{}", value) : "null";
-}
-}  // namespace
-
-std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
-                        const std::vector<StabilityRow>& stability,
-                        const std::vector<spiral_float::Choice>& float_choices) {
-    std::string text = "{\"info\":{";
-    text += fmt::format(
-        "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
-        "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
-        "\"image_pattern\":{},\"image_taps\":{},\"seconds\":{}",
-        json_string(info.renderer), json_string(info.vendor),
-        json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
-        info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
-        json_string(info.image_pattern), info.image_taps, info.seconds);
-    text += "},\n\"rows\":[\n";
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-        const Row& row = rows[r];
-        text += fmt::format(
-            "{{\"scene\":{},\"pattern\":{},\"taps\":{},\"layers\":{},\"ao_method\":{},"
-            "\"device\":{}",
-            json_string(row.scene), json_string(row.pattern), row.taps, row.layers,
-            json_string(row.ao_method), json_string(row.device));
-        for (const std::string& column : value_columns()) {
-            const auto value = row.get(column);
-            text += fmt::format(",\"{}\":{}", column, value ? json_number(*value) : "null");
+        const FloatImage accumulated = clamped_visibility(renderer.read_pass_output("ao-blurred"));
+        after.ref_accum = compare_images(accumulated, truth_visibility, agreed);
+        after.open_accum = double(count_open(accumulated, agreed, open_pixels).below);
+        after.open_core_accum = double(count_open(accumulated, agreed, blur_open_region).below);
+        if (has_output(renderer, kTemporalIrradianceOutput)) {
+            after.rad_ref_temporal =
+                against_irradiance(renderer.read_pass_output(kTemporalIrradianceOutput));
         }
-        text += r + 1 < rows.size() ? "},\n" : "}\n";
+        after.rad_ref_accum = against_irradiance(renderer.read_pass_output("radiosity-blurred"));
     }
-    text += "],\n\"stability\":[\n";
-    for (std::size_t r = 0; r < stability.size(); ++r) {
-        const StabilityRow& row = stability[r];
-        text += fmt::format(
-            "{{\"ao_method\":{},\"case\":{},\"quantity\":{},\"value\":{},\"test\":{},"
-            "\"tolerance\":{},\"pass\":{}}}{}",
-            json_string(row.ao_method), json_string(row.case_name), json_string(row.quantity),
-            json_number(row.value), json_string(row.test), json_number(row.tolerance),
-            row.pass ? "true" : "false", r + 1 < stability.size() ? ",\n" : "\n");
-    }
-    // Only the n where the choices differ; float_vs_exact.csv has every n.
-    int differing = 0, larger_k = 0;
-    std::string listed;
-    for (const spiral_float::Choice& c : float_choices) {
-        if (!c.differs()) continue;
-        ++differing;
-        larger_k += !c.tie();
-        listed += fmt::format(
-            "{}{{\"n\":{},\"exact_tau\":{},\"exact_K\":{},\"float_tau\":{},"
-            "\"float_tau_exact_K\":{},\"denominator\":{}}}",
-            listed.empty() ? "" : ",\n", c.n, c.exact_tau, c.exact_k, c.float_tau,
-            c.float_tau_exact_k, c.denominator);
-    }
-    text += fmt::format(
-        "],\n\"float_vs_exact\":{{\"max_n\":{},\"differing\":{},\"larger_K\":{},"
-        "\"rows\":[\n{}{}]}}}}\n",
-        float_choices.size(), differing, larger_k, listed, listed.empty() ? "" : "\n");
-    return text;
+    return after;
 }
+
+// The tables beside the rows: the numerical hard cases and the float search
+// against the exact one, each written or, when skipped, removed so that a
+// table from an earlier run into the same folder is not read as this run's.
+void measure_side_tables(const ReportOptions& options, ReportResult& result,
+                         const std::function<void(const std::string&)>& log) {
+    if (options.stability) {
+        const auto stability_start = std::chrono::steady_clock::now();
+        result.stability =
+            run_stability_cases(hard_cases::Parameters{}, options.ao_methods, options.log);
+        const auto passing = std::count_if(result.stability.begin(), result.stability.end(),
+                                           [](const StabilityRow& row) { return row.pass; });
+        log(fmt::format(
+            "stability: {} of {} checks pass, {:.1f} s", passing, result.stability.size(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - stability_start)
+                .count()));
+        write_text(options.output / "stability.csv", format_stability_csv(result.stability));
+    } else {
+        fs::remove(options.output / "stability.csv");
+    }
+    if (options.float_max_n > 0) {
+        const auto float_start = std::chrono::steady_clock::now();
+        result.float_choices =
+            spiral_float::compare_float_search(options.float_max_n, options.threads);
+        const auto differing =
+            std::count_if(result.float_choices.begin(), result.float_choices.end(),
+                          [](const spiral_float::Choice& c) { return c.differs(); });
+        log(fmt::format(
+            "float vs exact: double picks another tau at {} of n = 1..{}, {:.1f} s", differing,
+            options.float_max_n,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - float_start).count()));
+        write_text(options.output / "float_vs_exact.csv", format_float_csv(result.float_choices));
+    } else {
+        fs::remove(options.output / "float_vs_exact.csv");
+    }
+}
+
+}  // namespace
 
 void validate(const ReportOptions& options) {
     if (options.scenes.empty()) throw InputError("--scenes needs at least one scene");
@@ -553,28 +359,7 @@ ReportResult run_report(const ReportOptions& options) {
         const Camera& camera = scene.default_camera;
 
         // The ray-traced truth on the same pixel grid.
-        ReferenceSettings reference;
-        reference.render = settings;
-        // A fixed ray count per pixel, or with --rays 0 the budgets of
-        // `deepgi reference` (rays until the standard error is below their
-        // targets), so that the truth's own noise stays out of the error.
-        if (options.rays > 0) {
-            reference.rays.min_rays = options.rays;
-            reference.rays.max_rays = options.rays;
-            reference.rays.target_error = 0.0;
-            reference.irradiance_rays.min_rays = options.rays;
-            reference.irradiance_rays.max_rays = options.rays;
-            reference.irradiance_rays.ceiling_max_rays = options.rays;
-            reference.irradiance_rays.target_relative_error = 0.0;
-            reference.irradiance_rays.target_absolute_error = 0.0;
-        }
-        // One-bounce irradiance within the gather's radius: the rows compare
-        // the first frame after a cut, which has no bounce history, so one
-        // bounce is what it estimates.
-        reference.irradiance = true;
-        reference.radiosity_radius = settings.radiosity.radius;
-        reference.seed = options.seed;
-        reference.threads = options.threads;
+        const ReferenceSettings reference = reference_settings(options, settings);
         const auto reference_start = std::chrono::steady_clock::now();
         const RayScene rays(scene);
         const ReferenceImages truth = render_reference(rays, camera, reference);
@@ -698,41 +483,11 @@ ReportResult run_report(const ReportOptions& options) {
                                       crop(frame.ao_blurred, guard, agreed));
                         }
 
-                        // Continuous static frames after the cut: the timed ones
-                        // (so history-based passes do what they do in an
-                        // animation), and at least the rest of a rotation cycle,
-                        // after which the accumulated errors are read.
-                        std::map<std::string, std::vector<double>> samples;
-                        const int timed_end = options.warmup + options.frames;
-                        std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal,
-                            rad_ref_accum;
-                        std::optional<double> open_accum, open_core_accum;
-                        for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
-                            renderer.render(camera);
-                            if (i >= options.warmup && i < timed_end) {
-                                for (const auto& timing : renderer.last_timings())
-                                    samples[timing.pass].push_back(timing.milliseconds);
-                            }
-                            if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
-                            if (has_output(renderer, kTemporalAoOutput)) {
-                                ref_temporal =
-                                    compare_images(renderer.read_pass_output(kTemporalAoOutput),
-                                                   truth.ambient_visibility, agreed);
-                            }
-                            const FloatImage accumulated =
-                                clamped_visibility(renderer.read_pass_output("ao-blurred"));
-                            ref_accum =
-                                compare_images(accumulated, truth.ambient_visibility, agreed);
-                            open_accum = double(count_open(accumulated, agreed, open_pixels).below);
-                            open_core_accum =
-                                double(count_open(accumulated, agreed, blur_open_region).below);
-                            if (has_output(renderer, kTemporalIrradianceOutput)) {
-                                rad_ref_temporal = against_irradiance(
-                                    renderer.read_pass_output(kTemporalIrradianceOutput));
-                            }
-                            rad_ref_accum =
-                                against_irradiance(renderer.read_pass_output("radiosity-blurred"));
-                        }
+                        const StaticFrames after = run_static_frames(
+                            renderer, camera, options, truth.ambient_visibility, agreed,
+                            open_pixels, blur_open_region, against_irradiance);
+                        const auto& [samples, ref_temporal, ref_accum, rad_ref_temporal,
+                                     rad_ref_accum, open_accum, open_core_accum] = after;
 
                         Row row;
                         row.scene = scene_name;
@@ -816,36 +571,7 @@ ReportResult run_report(const ReportOptions& options) {
         }
     }
 
-    if (options.stability) {
-        const auto stability_start = std::chrono::steady_clock::now();
-        result.stability =
-            run_stability_cases(hard_cases::Parameters{}, options.ao_methods, options.log);
-        const auto passing = std::count_if(result.stability.begin(), result.stability.end(),
-                                           [](const StabilityRow& row) { return row.pass; });
-        log(fmt::format(
-            "stability: {} of {} checks pass, {:.1f} s", passing, result.stability.size(),
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - stability_start)
-                .count()));
-        write_text(options.output / "stability.csv", format_stability_csv(result.stability));
-    } else {
-        // A skipped table must not be read from an earlier run into the same folder.
-        fs::remove(options.output / "stability.csv");
-    }
-    if (options.float_max_n > 0) {
-        const auto float_start = std::chrono::steady_clock::now();
-        result.float_choices =
-            spiral_float::compare_float_search(options.float_max_n, options.threads);
-        const auto differing =
-            std::count_if(result.float_choices.begin(), result.float_choices.end(),
-                          [](const spiral_float::Choice& c) { return c.differs(); });
-        log(fmt::format(
-            "float vs exact: double picks another tau at {} of n = 1..{}, {:.1f} s", differing,
-            options.float_max_n,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - float_start).count()));
-        write_text(options.output / "float_vs_exact.csv", format_float_csv(result.float_choices));
-    } else {
-        fs::remove(options.output / "float_vs_exact.csv");
-    }
+    measure_side_tables(options, result, log);
 
     result.info.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
