@@ -1,7 +1,7 @@
 // Writes the fuzzer's seed corpus (tests/fuzz/corpus): valid files and every
 // hostile case the loader's tests cover, built by the same functions. Run
 // once when a case is added: make_corpus <directory>.
-#include "../runtime/gltf_support.hpp"
+#include "../support/gltf_support.hpp"
 
 #include <stb_image_write.h>
 

@@ -2,7 +2,7 @@
 // A small writer of glTF 2.0 JSON for render tests: every accessor, mesh,
 // node and material is added from plain numbers, so where each surface lies
 // and what colour it has follows from the test's own construction.
-#include "gltf_support.hpp"
+#include "../support/gltf_support.hpp"
 
 #include <fmt/format.h>
 

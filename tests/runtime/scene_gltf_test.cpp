@@ -4,7 +4,7 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
 #include "gltf_builder.hpp"
-#include "gltf_support.hpp"
+#include "../support/gltf_support.hpp"
 
 #include <catch2/catch.hpp>
 #include <stb_image_write.h>

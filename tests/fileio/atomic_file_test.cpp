@@ -1,4 +1,5 @@
-// write_file_atomically: the result, the failures, and what failures leave behind.
+// fileio's write_file_atomically (what spiralgen and deepgi write through):
+// the result, the failures, and what failures leave behind.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -9,10 +10,10 @@
 #include <vector>
 
 #include "process.hpp"
-#include "spiral/codegen.hpp"
+#include "spiral/fileio.hpp"
 
 namespace fs = std::filesystem;
-using spiral::codegen::write_file_atomically;
+using spiral::fileio::write_file_atomically;
 using spiral::test::read_file;
 
 namespace {
@@ -35,8 +36,8 @@ std::string failure_of(const fs::path& path, std::string_view contents) {
 
 }  // namespace
 
-TEST_CASE("atomic file: write_file_atomically creates and replaces files", "[codegen][atomic]") {
-    const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
+TEST_CASE("atomic file: write_file_atomically creates and replaces files", "[fileio][atomic]") {
+    const auto dir = spiral::test::make_scratch_dir("fileio-atomic");
     const auto path = dir / "out.glsl";
     write_file_atomically(path, "first\n");
     CHECK(read_file(path) == "first\n");
@@ -54,8 +55,8 @@ TEST_CASE("atomic file: write_file_atomically creates and replaces files", "[cod
 
 TEST_CASE(
     "atomic file: write_file_atomically fails with one line naming the path and leaves nothing",
-    "[codegen][atomic]") {
-    const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
+    "[fileio][atomic]") {
+    const auto dir = spiral::test::make_scratch_dir("fileio-atomic");
 
     SECTION("missing directory") {
         const auto path = dir / "missing" / "out.glsl";
@@ -91,8 +92,8 @@ TEST_CASE(
 }
 
 TEST_CASE("atomic file: concurrent writers never leave a mixed file or a temporary",
-          "[codegen][atomic]") {
-    const auto dir = spiral::test::make_scratch_dir("codegen-atomic");
+          "[fileio][atomic]") {
+    const auto dir = spiral::test::make_scratch_dir("fileio-atomic");
     const auto path = dir / "shared.glsl";
     const std::string a(100000, 'a'), b(70000, 'b');
     std::vector<std::thread> writers;
