@@ -1,5 +1,6 @@
-// The renderer's frame: the list of passes in the order they run, the
-// per-frame constants, and the loop that resizes, runs and dumps the passes.
+// The renderer's frame: the list of passes in the order they run (one line
+// each in passes/pass_list.hpp), the per-frame constants, and the loop that
+// resizes, runs and dumps the passes.
 // Nothing here knows a pass's textures; passes meet in FrameResources.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -47,20 +48,11 @@ glm::mat4 guard_band_projection(const Camera& camera, const RenderSettings& sett
 }
 
 const std::vector<PassFactory>& default_pass_list() {
+    // One line per pass in passes/pass_list.hpp, in the order they run.
     static const std::vector<PassFactory> passes = {
-        make_shadow_pass,             //
-        make_gbuffer_pass,            //
-        make_backface_depth_pass,     // the march only
-        make_direct_light_pass,       //
-        make_depth_pyramid_pass,      //
-        make_sao_pass,                //
-        make_ao_temporal_pass,        //
-        make_radiosity_prepare_pass,  //
-        make_radiosity_pass,          //
-        make_blur_pass,               // AO and radiosity E share one bilateral blur
-        make_compose_pass,            //
-        make_tonemap_pass,            // final image only
-        make_debug_view_pass,         // any other view
+#define DEEPGI_PASS(name) make_##name##_pass,
+#include "passes/pass_list.hpp"
+#undef DEEPGI_PASS
     };
     return passes;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// One factory per pass, each defined in the .cpp file named after the pass;
-// the pass classes themselves stay private to their files. frame.cpp lists
-// the factories in the order the passes run.
+// One factory per pass, each defined in the .cpp file named after the pass
+// and declared here from the pass list (pass_list.hpp); the pass classes
+// themselves stay private to their files.
 #include "pass.hpp"
 #include "shader_shared.hpp"
 
@@ -9,23 +9,14 @@
 
 namespace deepgi {
 
-std::unique_ptr<Pass> make_shadow_pass(const ShaderLoader& loader, const Scene& scene);
+#define DEEPGI_PASS(name) \
+    std::unique_ptr<Pass> make_##name##_pass(const ShaderLoader& loader, const Scene& scene);
+#include "passes/pass_list.hpp"
+#undef DEEPGI_PASS
+
 // The key light's shadow projection for a `size` x `size` map; the shadow pass
 // computes it on resize, and the renderer again when the light is edited.
 ShadowProjection shadow_projection(const Scene& scene, int size);
-std::unique_ptr<Pass> make_gbuffer_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_backface_depth_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_direct_light_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_depth_pyramid_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_sao_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_ao_temporal_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_radiosity_prepare_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene& scene);
-// AO and layer 0's radiosity through one bilateral blur.
-std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_tonemap_pass(const ShaderLoader& loader, const Scene& scene);
-std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene& scene);
 
 // The separable bilateral blur as a reusable building block: the blur pass
 // uses it, and so will any later pass that smooths a screen-space signal.
