@@ -291,25 +291,21 @@ void Renderer::set_settings(const RenderSettings& settings) {
     bool invalidate = resized;
     std::string reason = fmt::format("resize to {}x{}, guard band {}", settings.width,
                                      settings.height, settings.guard_band_fraction);
-    // Beyond that, what a change costs comes from each setting's row.
-    for (const NumericSetting& row : numeric_settings()) {
-        if (row.effect == SettingEffect::none || row.get(settings) == row.get(state.settings))
-            continue;
-        reallocate = reallocate || row.effect == SettingEffect::reallocate;
-        if (row.effect == SettingEffect::drop_history && !invalidate) {
+    // Beyond that, each pass says what a change costs it; the rows that no
+    // pass of the list owns (the frame's own) count here.
+    auto count = [&](const SettingsChange& change) {
+        reallocate = reallocate || change.reallocate;
+        if (!change.drop_history.empty() && !invalidate) {
             invalidate = true;
-            reason = fmt::format("{} {} changed to {}", row.group, row.label, row.get(settings));
+            reason = change.drop_history;
         }
-    }
+    };
+    count(rows_settings_change(state.settings, settings, [&](std::string_view owner) {
+        return std::none_of(state.passes.begin(), state.passes.end(),
+                            [&](const auto& pass) { return pass->name() == owner; });
+    }));
+    for (const auto& pass : state.passes) count(pass->settings_change(state.settings, settings));
     const bool retime = settings.timing != state.settings.timing;
-    // The estimators' E and confidence mean different things (docs/radiosity.md):
-    // history of one would take cycles to fade from the other.
-    const bool method_changed = settings.radiosity.method != state.settings.radiosity.method;
-    if (method_changed && !invalidate) {
-        invalidate = true;
-        reason =
-            fmt::format("radiosity method changed to {}", to_string(settings.radiosity.method));
-    }
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).

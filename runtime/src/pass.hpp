@@ -11,6 +11,7 @@
 #include "deepgi/renderer.hpp"
 #include "frame_resources.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -61,6 +62,12 @@ struct PassDeclaration {
     std::vector<std::string> writes;  // names published with frame.publish()
 };
 
+// What a settings change costs a pass (Pass::settings_change).
+struct SettingsChange {
+    bool reallocate = false;   // its render targets are sized by a changed value
+    std::string drop_history;  // non-empty: why its history must go
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -74,6 +81,11 @@ public:
     virtual PassDeclaration declaration(const RenderSettings&) const = 0;
     virtual void run(FrameResources& frame) = 0;
     virtual std::vector<PassOutput> outputs(const FrameResources&) const { return {}; }
+    // Which of its settings reallocate it and which drop history: by default
+    // what the rows of numeric_settings() naming this pass as owner say (their
+    // SettingEffect); a pass overrides it for settings that are no such row.
+    virtual SettingsChange settings_change(const RenderSettings& before,
+                                           const RenderSettings& after) const;
 };
 
 // The passes of a frame in the order they run (frame.cpp). Tests may run a
@@ -85,6 +97,12 @@ const std::vector<PassFactory>& default_pass_list();
 FloatImage read_pass_output(const PassOutput& output, float near_plane);
 
 // ---- helpers shared by the passes ----
+
+// What the numeric settings rows whose owner `owns` accepts say a change
+// from `before` to `after` costs; the reason names the first row that drops
+// history.
+SettingsChange rows_settings_change(const RenderSettings& before, const RenderSettings& after,
+                                    const std::function<bool(std::string_view owner)>& owns);
 
 // Checks the declarations of the enabled passes in list order and returns
 // them, one per pass (empty for a disabled one), for the frame to bind and

@@ -257,6 +257,53 @@ TEST_CASE("passes: a pass added to the list appears in the dump", "[runtime][pas
 
 namespace {
 
+// Keeps history that an exposure change would spoil, and says so.
+class ExposureHistoryPass final : public Pass {
+public:
+    std::string_view name() const override { return "exposure_history"; }
+    PassDeclaration declaration(const RenderSettings&) const override { return {}; }
+    void resize(FrameResources&) override {}
+    void run(FrameResources&) override {}
+    SettingsChange settings_change(const RenderSettings& before,
+                                   const RenderSettings& after) const override {
+        if (after.exposure == before.exposure) return {};
+        return {.drop_history = "exposure_history: exposure changed"};
+    }
+};
+
+std::unique_ptr<Pass> make_exposure_history_pass(const ShaderLoader&, const Scene&) {
+    return std::make_unique<ExposureHistoryPass>();
+}
+
+}  // namespace
+
+TEST_CASE("passes: a pass says which settings changes drop its history", "[runtime][passes]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    RenderSettings brighter = settings_at(64, 32);
+    brighter.exposure = 2.0f;
+    // Control: the default passes keep history over an exposure change.
+    Renderer plain(scene, settings_at(64, 32), loader);
+    plain.render(scene.default_camera);
+    plain.set_settings(brighter);
+    CHECK(plain.history_valid());
+
+    std::vector<PassFactory> passes = default_pass_list();
+    passes.push_back(make_exposure_history_pass);
+    Renderer renderer(scene, settings_at(64, 32), loader, passes);
+    renderer.render(scene.default_camera);
+    REQUIRE(renderer.history_valid());
+    renderer.set_settings(renderer.settings());
+    CHECK(renderer.history_valid());
+    renderer.set_settings(brighter);
+    CHECK_FALSE(renderer.history_valid());
+    CHECK(last_line(renderer.history_log()).find("exposure_history: exposure changed") !=
+          std::string::npos);
+}
+
+namespace {
+
 // Binds a texture name that does not exist: GL_INVALID_OPERATION.
 class BrokenPass final : public Pass {
 public:

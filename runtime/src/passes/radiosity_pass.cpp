@@ -57,6 +57,18 @@ public:
                            "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"}};
     }
 
+    SettingsChange settings_change(const RenderSettings& before,
+                                   const RenderSettings& after) const override {
+        SettingsChange change = Pass::settings_change(before, after);
+        // The estimators' E and confidence mean different things
+        // (docs/radiosity.md): history of one would take cycles to fade from
+        // the other.
+        if (change.drop_history.empty() && after.radiosity.method != before.radiosity.method)
+            change.drop_history =
+                fmt::format("radiosity method changed to {}", to_string(after.radiosity.method));
+        return change;
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
