@@ -211,6 +211,78 @@ StaticFrames run_static_frames(
     return after;
 }
 
+// Everything one row's columns are made of.
+struct Measured {
+    double discrepancy = 0.0;
+    double turns = 0.0;
+    bool gathers_taps = true;  // false: no converged AO to compare with
+    ErrorStats conv_raw, conv_blur, ref_raw, ref_blur, rad_raw, rad_blur;
+    std::optional<ErrorStats> rad_ref_raw, rad_ref_blur;
+    OpenCount open_raw;  // the raw AO over every open pixel
+    long long open_blur_below = 0;
+    long long open_core_raw_below = 0;
+    long long open_core_blur_below = 0;
+    StaticFrames after;
+};
+
+// The row's values in value_columns() order (format.cpp); `row` has its key
+// fields set. Empty cells where the build or the reference cannot measure.
+Row make_row(Row row, const Measured& m) {
+    const StaticFrames& after = m.after;
+    auto add = [&](const std::string& column, std::optional<double> value) {
+        row.values.push_back({column, value ? finite(*value) : std::nullopt});
+    };
+    auto field = [](const std::optional<ErrorStats>& s,
+                    double ErrorStats::*member) -> std::optional<double> {
+        if (!s) return std::nullopt;
+        return (*s).*member;
+    };
+    add("discrepancy", m.discrepancy);
+    add("turns", m.turns);
+    for (const auto& pass : timed_passes()) {
+        const auto it = after.samples.find(pass);
+        if (it == after.samples.end())
+            throw std::runtime_error(
+                fmt::format("the frame timed no pass named '{}' (column {}_ms)", pass, pass));
+        add(pass + "_ms", median(it->second));
+    }
+    auto if_gathers = [&](double value) -> std::optional<double> {
+        if (!m.gathers_taps) return std::nullopt;
+        return value;
+    };
+    add("conv_raw_mae", if_gathers(m.conv_raw.mae));
+    add("conv_raw_rmse", if_gathers(m.conv_raw.rmse));
+    add("conv_blur_mae", if_gathers(m.conv_blur.mae));
+    add("conv_blur_rmse", if_gathers(m.conv_blur.rmse));
+    // MAE, RMSE and bias of one comparison.
+    auto add_stats = [&](const std::string& prefix, const std::optional<ErrorStats>& stats) {
+        add(prefix + "_mae", field(stats, &ErrorStats::mae));
+        add(prefix + "_rmse", field(stats, &ErrorStats::rmse));
+        add(prefix + "_bias", field(stats, &ErrorStats::bias));
+    };
+    add_stats("ref_raw", m.ref_raw);
+    add_stats("ref_blur", m.ref_blur);
+    add_stats("ref_temporal", after.ref_temporal);
+    add_stats("ref_accum", after.ref_accum);
+    add("ref_pixels", double(m.ref_blur.pixels));
+    add("ref_open_pixels", double(m.open_raw.pixels));
+    add("ref_open_raw_below", double(m.open_raw.below));
+    add("ref_open_blur_below", double(m.open_blur_below));
+    add("ref_open_accum_below", after.open_accum);
+    add("ref_open_core_raw_below", double(m.open_core_raw_below));
+    add("ref_open_core_blur_below", double(m.open_core_blur_below));
+    add("ref_open_core_accum_below", after.open_core_accum);
+    add("rad_conv_raw_rel_mae", m.rad_raw.mae);
+    add("rad_conv_raw_rel_rmse", m.rad_raw.rmse);
+    add("rad_conv_blur_rel_mae", m.rad_blur.mae);
+    add("rad_conv_blur_rel_rmse", m.rad_blur.rmse);
+    add_stats("rad_ref_raw_rel", m.rad_ref_raw);
+    add_stats("rad_ref_blur_rel", m.rad_ref_blur);
+    add_stats("rad_ref_temporal_rel", after.rad_ref_temporal);
+    add_stats("rad_ref_accum_rel", after.rad_ref_accum);
+    return row;
+}
+
 // The tables beside the rows: the numerical hard cases and the float search
 // against the exact one, each written or, when skipped, removed so that a
 // table from an earlier run into the same folder is not read as this run's.
@@ -248,64 +320,6 @@ void measure_side_tables(const ReportOptions& options, ReportResult& result,
 }
 
 }  // namespace
-
-void validate(const ReportOptions& options) {
-    if (options.scenes.empty()) throw InputError("--scenes needs at least one scene");
-    if (options.taps.empty()) throw InputError("--taps needs at least one tap count");
-    for (int n : options.taps) {
-        if (n < 1 || n > 1024)
-            throw InputError(fmt::format("--taps {} is out of range (1 to 1024)", n));
-    }
-    if (options.patterns.empty()) throw InputError("--patterns needs at least one pattern");
-    for (const std::string& name : options.patterns) {
-        if (!is_pattern_name(name))
-            throw InputError(
-                fmt::format("--patterns '{}' is not one of optimal, tau1, golden, "
-                            "m2, m4, m8",
-                            name));
-    }
-    if (options.layers.empty()) throw InputError("--layers needs at least one layer count");
-    if (options.ao_methods.empty()) throw InputError("--ao-methods needs at least one method");
-    for (std::size_t i = 0; i < options.ao_methods.size(); ++i) {
-        for (std::size_t j = 0; j < i; ++j) {
-            if (options.ao_methods[i] == options.ao_methods[j])
-                throw InputError(
-                    fmt::format("--ao-methods names '{}' twice", to_string(options.ao_methods[i])));
-        }
-    }
-    for (int layers : options.layers) {
-        if (layers < 1 || layers > limits::max_ao_layers)
-            throw InputError(fmt::format("--layers {} is out of range (1 to {})", layers,
-                                         limits::max_ao_layers));
-    }
-    if (options.width < 8 || options.height < 8 || options.width > 4096 || options.height > 4096)
-        throw InputError(fmt::format("--size {}x{} is out of range (8 to 4096 per side)",
-                                     options.width, options.height));
-    if (options.rays < 0 || options.rays > 1 << 20)
-        throw InputError(fmt::format("--rays {} is out of range (0 to 1048576)", options.rays));
-    if (options.converged_taps < 1 || options.converged_taps > 1024)
-        throw InputError(
-            fmt::format("--converged-taps {} is out of range (1 to 1024)", options.converged_taps));
-    if (options.frames < 1 || options.frames > 1000)
-        throw InputError(fmt::format("--frames {} is out of range (1 to 1000)", options.frames));
-    if (options.warmup < 0 || options.warmup > 1000)
-        throw InputError(fmt::format("--warmup {} is out of range (0 to 1000)", options.warmup));
-    if (options.threads < 0) throw InputError("--threads must be >= 0");
-    if (options.float_max_n < 0 || options.float_max_n > 4096)
-        throw InputError(
-            fmt::format("--float-max-n {} is out of range (0 to 4096)", options.float_max_n));
-    if (options.output.empty()) throw InputError("report needs --output DIR");
-    if (fs::exists(options.output) && !fs::is_directory(options.output))
-        throw InputError(fmt::format("--output '{}' is not a directory", options.output.string()));
-    const fs::path parent =
-        options.output.has_parent_path() ? options.output.parent_path() : fs::path(".");
-    if (!fs::is_directory(parent))
-        throw InputError(fmt::format("--output '{}': directory '{}' does not exist",
-                                     options.output.string(), parent.string()));
-    // Scenes last: loading a file can be slow, and a bad name is then found
-    // before anything is rendered.
-    for (const std::string& scene : options.scenes) (void)load_scene(scene);
-}
 
 ReportResult run_report(const ReportOptions& options) {
     validate(options);
@@ -483,85 +497,41 @@ ReportResult run_report(const ReportOptions& options) {
                                       crop(frame.ao_blurred, guard, agreed));
                         }
 
-                        const StaticFrames after = run_static_frames(
-                            renderer, camera, options, truth.ambient_visibility, agreed,
-                            open_pixels, blur_open_region, against_irradiance);
-                        const auto& [samples, ref_temporal, ref_accum, rad_ref_temporal,
-                                     rad_ref_accum, open_accum, open_core_accum] = after;
-
-                        Row row;
-                        row.scene = scene_name;
-                        row.pattern = pattern;
-                        row.taps = n;
-                        row.layers = layers;
-                        row.ao_method = method_name;
-                        row.device = result.info.renderer;
-                        auto add = [&](const std::string& column, std::optional<double> value) {
-                            row.values.push_back({column, value ? finite(*value) : std::nullopt});
-                        };
-                        auto ms = [&](const std::string& pass) -> std::optional<double> {
-                            const auto it = samples.find(pass);
-                            if (it == samples.end()) return std::nullopt;
-                            return median(it->second);
-                        };
-                        auto field = [](const std::optional<ErrorStats>& s,
-                                        double ErrorStats::*member) -> std::optional<double> {
-                            if (!s) return std::nullopt;
-                            return (*s).*member;
-                        };
-                        add("discrepancy", discrepancy);
-                        add("turns", turns.value());
-                        for (const auto& pass : timed_passes()) {
-                            if (samples.find(pass) == samples.end())
-                                throw std::runtime_error(
-                                    fmt::format("the frame timed no pass named '{}' (column {}_ms)",
-                                                pass, pass));
-                            add(pass + "_ms", ms(pass));
-                        }
-                        auto if_gathers = [&](double value) -> std::optional<double> {
-                            if (!gathers_taps) return std::nullopt;
-                            return value;
-                        };
-                        add("conv_raw_mae", if_gathers(conv_raw.mae));
-                        add("conv_raw_rmse", if_gathers(conv_raw.rmse));
-                        add("conv_blur_mae", if_gathers(conv_blur.mae));
-                        add("conv_blur_rmse", if_gathers(conv_blur.rmse));
-                        // MAE, RMSE and bias of one comparison; empty cells where
-                        // the build or the reference cannot measure it.
-                        auto add_stats = [&](const std::string& prefix,
-                                             const std::optional<ErrorStats>& stats) {
-                            add(prefix + "_mae", field(stats, &ErrorStats::mae));
-                            add(prefix + "_rmse", field(stats, &ErrorStats::rmse));
-                            add(prefix + "_bias", field(stats, &ErrorStats::bias));
-                        };
-                        add_stats("ref_raw", ref_raw);
-                        add_stats("ref_blur", ref_blur);
-                        add_stats("ref_temporal", ref_temporal);
-                        add_stats("ref_accum", ref_accum);
-                        add("ref_pixels", double(ref_blur.pixels));
-                        const OpenCount open_raw = count_open(frame.ao_raw, agreed, open_pixels);
-                        add("ref_open_pixels", double(open_raw.pixels));
-                        add("ref_open_raw_below", double(open_raw.below));
-                        add("ref_open_blur_below",
-                            double(count_open(frame.ao_blurred, agreed, open_pixels).below));
-                        add("ref_open_accum_below", open_accum);
-                        add("ref_open_core_raw_below",
-                            double(count_open(frame.ao_raw, agreed, raw_open_region).below));
-                        add("ref_open_core_blur_below",
-                            double(count_open(frame.ao_blurred, agreed, blur_open_region).below));
-                        add("ref_open_core_accum_below", open_core_accum);
-                        add("rad_conv_raw_rel_mae", rad_raw.mae);
-                        add("rad_conv_raw_rel_rmse", rad_raw.rmse);
-                        add("rad_conv_blur_rel_mae", rad_blur.mae);
-                        add("rad_conv_blur_rel_rmse", rad_blur.rmse);
-                        add_stats("rad_ref_raw_rel", rad_ref_raw);
-                        add_stats("rad_ref_blur_rel", rad_ref_blur);
-                        add_stats("rad_ref_temporal_rel", rad_ref_temporal);
-                        add_stats("rad_ref_accum_rel", rad_ref_accum);
+                        Measured measured{
+                            .discrepancy = discrepancy,
+                            .turns = turns.value(),
+                            .gathers_taps = gathers_taps,
+                            .conv_raw = conv_raw,
+                            .conv_blur = conv_blur,
+                            .ref_raw = ref_raw,
+                            .ref_blur = ref_blur,
+                            .rad_raw = rad_raw,
+                            .rad_blur = rad_blur,
+                            .rad_ref_raw = rad_ref_raw,
+                            .rad_ref_blur = rad_ref_blur,
+                            .open_raw = count_open(frame.ao_raw, agreed, open_pixels),
+                            .open_blur_below =
+                                count_open(frame.ao_blurred, agreed, open_pixels).below,
+                            .open_core_raw_below =
+                                count_open(frame.ao_raw, agreed, raw_open_region).below,
+                            .open_core_blur_below =
+                                count_open(frame.ao_blurred, agreed, blur_open_region).below,
+                            .after = run_static_frames(
+                                renderer, camera, options, truth.ambient_visibility, agreed,
+                                open_pixels, blur_open_region, against_irradiance)};
+                        Row row = make_row(Row{.scene = scene_name,
+                                               .pattern = pattern,
+                                               .taps = n,
+                                               .layers = layers,
+                                               .ao_method = method_name,
+                                               .device = result.info.renderer,
+                                               .values = {}},
+                                           measured);
                         log(fmt::format(
                             "{} {} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {}, vs "
                             "reference {:.4f} raw {:.4f} blurred",
-                            scene_name, method_name, pattern, n, layers, ms("sao").value_or(0.0),
+                            scene_name, method_name, pattern, n, layers,
+                            row.get("sao_ms").value_or(0.0),
                             gathers_taps ? fmt::format("{:.4f}", conv_raw.mae) : std::string("-"),
                             ref_raw.mae, ref_blur.mae));
                         result.rows.push_back(std::move(row));
