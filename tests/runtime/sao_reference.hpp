@@ -2,6 +2,10 @@
 // CPU evaluation of the deep SAO pass (docs/design.md, section 5.6) and of the
 // rotated-grid depth pyramid, written from the formulas rather than from the
 // shaders, as the oracle the GPU read-backs are compared with.
+// One piece is shared with the shaders, not rewritten: the per-pixel rotation
+// hash includes shaders/pixel_rotation_hash.h itself, so that the CPU and GPU
+// rotate each pixel's taps identically; that hash is checked on its own
+// against values computed from its definition (pixel_rotation_test.cpp).
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 
