@@ -11,7 +11,10 @@
 #include <cstring>
 #include <span>
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+// Loads one input as the fuzzer does; true when the loader accepted it, false
+// when it refused it with an InputError. The corpus replay requires the
+// valid seed files to be accepted.
+bool gltf_fuzz_load(const std::uint8_t* data, std::size_t size) {
     deepgi::SceneLimits limits;
     limits.node_visits = 20'000;
     limits.triangles = 200'000;
@@ -28,8 +31,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& batch : scene.batches)
             if (std::uint64_t(batch.first_index) + batch.index_count > scene.indices.size())
                 __builtin_trap();
+        return true;
     } catch (const deepgi::InputError&) {
         // Refusing bad input with a message is the expected outcome.
+        return false;
     }
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    gltf_fuzz_load(data, size);
     return 0;
 }

@@ -1,5 +1,6 @@
 // The ray-traced reference against closed forms: an open plane, the inside
 // corner of two planes, and the camera rays against analytic plane depths.
+#include "../support/textbook_camera.hpp"
 #include "deepgi/reference.hpp"
 
 #include <catch2/catch.hpp>
@@ -53,16 +54,16 @@ TEST_CASE("reference: an unoccluded plane has visibility 1 head-on and at a graz
         camera.yaw = 0.4f;
         const auto settings = small_settings(40, 30);
         const deepgi::ReferenceImages images = deepgi::render_reference(rays, camera, settings);
-        const glm::mat4 to_world = glm::inverse(deepgi::camera_view_matrix(camera));
+        // The textbook camera (support/textbook_camera.hpp), not the library's.
+        const deepgi::test::TextbookCamera textbook =
+            deepgi::test::textbook_camera(camera, settings.render);
         int surface = 0;
         for (int y = 0; y < images.ambient_visibility.height; ++y) {
             for (int x = 0; x < images.ambient_visibility.width; ++x) {
                 // Independent oracle for the camera ray: where the pixel-centre
                 // ray of unit depth meets y = 0, in closed form.
-                const glm::vec3 d =
-                    glm::vec3(to_world * glm::vec4(deepgi::camera_ray_direction(
-                                                       camera, settings.render, x + 0.5f, y + 0.5f),
-                                                   0.0f));
+                const glm::vec3 d = deepgi::test::textbook_to_world(
+                    textbook, deepgi::test::textbook_camera_ray(textbook, x + 0.5f, y + 0.5f));
                 const float depth = d.y < 0.0f ? -camera.position.y / d.y : 0.0f;
                 const float got = images.depth_layer0.at(x, y);
                 if (depth <= 0.0f || depth > 1500.0f) continue;

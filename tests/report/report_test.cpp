@@ -5,6 +5,7 @@
 #include "deepgi/context.hpp"
 #include "deepgi/report.hpp"
 #include "support/process.hpp"
+#include "support/skip.hpp"
 
 #include <spiral/optimizer.hpp>
 
@@ -349,21 +350,53 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     CHECK(choices[6].at("differs") == "1");
     CHECK(json.find(fmt::format("\"differing\":{},", differing)) != std::string::npos);
 
-    // The summary states both, as the plot script writes it (when matplotlib is there).
-    if (fs::exists("/usr/bin/python3") &&
-        spiral::test::run_command("/usr/bin/python3 -c 'import matplotlib'").status == 0) {
-        const auto plot = spiral::test::run_command("/usr/bin/python3 '" +
-                                                    std::string(DEEPGI_PLOT_REPORT_SCRIPT) + "' '" +
-                                                    output.string() + "'");
-        INFO(plot.err);
-        REQUIRE(plot.status == 0);
-        const std::string summary = spiral::test::read_file(output / "summary.md");
-        CHECK(summary.find("## Numerical stability") != std::string::npos);
-        CHECK(summary.find(fmt::format("**{} of {} checks pass**", expected_stability,
-                                       expected_stability)) != std::string::npos);
-        CHECK(summary.find(fmt::format("exact integer search at **{}** n", differing)) !=
-              std::string::npos);
-    }
+    fs::remove_all(output);
+}
+
+TEST_CASE("report: the summary's sentences agree with the CSV files beside it", "[report][gl]") {
+    // summary.md is written by the plot script, which needs matplotlib.
+    if (!fs::exists("/usr/bin/python3") ||
+        spiral::test::run_command("/usr/bin/python3 -c 'import matplotlib'").status != 0)
+        spiral::test::skip_test("python3 with matplotlib is missing (Debian: python3-matplotlib)");
+    deepgi::HeadlessContext context;
+    const fs::path output = spiral::test::make_scratch_dir("deepgi-report-summary");
+    report::ReportOptions options;
+    options.scenes = {"cornell"};
+    options.taps = {4, 8};
+    options.patterns = {"optimal"};
+    options.layers = {1};
+    options.ao_methods = {deepgi::AoMethod::solid_angle};
+    options.width = 96;
+    options.height = 54;
+    options.rays = 32;
+    options.converged_taps = 64;
+    options.warmup = 0;
+    options.frames = 1;
+    options.float_max_n = 64;
+    options.output = output;
+    report::run_report(options);
+    const auto plot =
+        spiral::test::run_command("/usr/bin/python3 '" + std::string(DEEPGI_PLOT_REPORT_SCRIPT) +
+                                  "' '" + output.string() + "'");
+    INFO(plot.err);
+    REQUIRE(plot.status == 0);
+    const std::string summary = spiral::test::read_file(output / "summary.md");
+    INFO(summary);
+
+    // Its counts, recomputed here from the CSV files the report wrote.
+    const auto stability = read_csv(output / "stability.csv");
+    REQUIRE_FALSE(stability.empty());
+    std::size_t passing = 0;
+    for (const auto& row : stability) passing += row.at("pass") == "1";
+    CHECK(summary.find("## Numerical stability") != std::string::npos);
+    CHECK(summary.find(fmt::format("**{} of {} checks pass**", passing, stability.size())) !=
+          std::string::npos);
+    const auto choices = read_csv(output / "float_vs_exact.csv");
+    REQUIRE(choices.size() == 64);
+    int differing = 0;
+    for (const auto& row : choices) differing += row.at("differs") == "1";
+    CHECK(summary.find(fmt::format("exact integer search at **{}** n", differing)) !=
+          std::string::npos);
     fs::remove_all(output);
 }
 

@@ -2,10 +2,13 @@
 // whole cycles of rotated tap patterns lowers the pixel-to-pixel noise and
 // leaves the mean where a single frame puts it.
 #include "sao_test_support.hpp"
+#include "support/targets.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace deepgi::test {
 namespace {
@@ -80,6 +83,98 @@ TEST_CASE("ao_temporal: alpha 0 passes the raw SAO result through", "[ao_tempora
         CHECK(renderer.read_pass_output("ao-temporal").pixels ==
               renderer.read_pass_output("ao-raw").pixels);
     }
+}
+
+// Errors of one visibility image against a converged still render, over the
+// viewport's pixels that have a surface.
+struct ErrorAgainstStill {
+    double mean_absolute = 0.0;
+    int large = 0;  // pixels off by more than ghost_threshold
+    int pixels = 0;
+};
+
+// An error no pixel of a history-free frame should reach through noise alone
+// (its tap noise is a few hundredths); a surface's visibility trailing onto
+// another reaches it.
+constexpr float ghost_threshold = 0.25f;
+
+ErrorAgainstStill error_against(const FloatImage& visibility, const FloatImage& still,
+                                const FloatImage& depth, int guard) {
+    ErrorAgainstStill error;
+    double sum = 0.0;
+    for (int y = guard; y < visibility.height - guard; ++y) {
+        for (int x = guard; x < visibility.width - guard; ++x) {
+            if (!(depth.at(x, y) > 0.0f)) continue;
+            const float e = std::abs(visibility.at(x, y) - still.at(x, y));
+            sum += e;
+            error.large += e > ghost_threshold;
+            ++error.pixels;
+        }
+    }
+    error.mean_absolute = sum / std::max(error.pixels, 1);
+    return error;
+}
+
+// The filter under camera motion misses its targets on atrium and warehouse:
+// where history is reprojected onto a surface it did not come from, pixels
+// keep another surface's visibility for a few frames. The bounds are
+// regression bounds taken from the values measured at 160x90 (about 10%
+// above them), not targets. The table goes to ao-temporal-targets.md, printed
+// by the ctest entry "deepgi_ao_temporal_targets_missed" (support/targets.hpp).
+spiral::test::TargetTable& targets() {
+    static spiral::test::TargetTable table(
+        "ao-temporal-targets.md",
+        {{"atrium/MAE, filtered / fresh/path frame 30", {1.5, "measured 1.35"}},
+         {"atrium/pixels off by > 0.25, filtered / fresh/path frame 30", {3.4, "measured 40 / 13"}},
+         {"warehouse/pixels off by > 0.25, filtered / fresh/path frame 30",
+          {1.6, "measured 59 / 41"}}});
+    return table;
+}
+
+TEST_CASE(
+    "ao_temporal: along a camera path the filtered AO leaves no trail beyond a fresh frame's "
+    "error",
+    "[ao_temporal]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    for (const std::string name : {"atrium", "warehouse"}) {
+        const Scene scene = make_builtin_scene(name);
+        const RenderSettings settings = small_settings(160, 90);
+        const int guard = frame_layout(settings).guard;
+        // The filter's history along 30 frames of the path.
+        Renderer moving(scene, settings, loader);
+        const int last = 30;
+        for (int frame = 0; frame <= last; ++frame)
+            moving.render(camera_on_path(scene.camera_path, frame));
+        const Camera camera = camera_on_path(scene.camera_path, last);
+        // The oracle: the same camera held still for a whole 16 frames, and
+        // one history-free frame at it for the noise a frame has anyway.
+        Renderer still(scene, settings, loader);
+        still.render(camera);
+        const FloatImage fresh = still.read_pass_output("ao-temporal");
+        for (int frame = 1; frame < 16; ++frame) still.render(camera);
+        const FloatImage converged = still.read_pass_output("ao-temporal");
+        const FloatImage depth = moving.read_pass_output("gbuffer-depth-layer0");
+        REQUIRE(depth.pixels == still.read_pass_output("gbuffer-depth-layer0").pixels);
+        const ErrorAgainstStill filtered =
+            error_against(moving.read_pass_output("ao-temporal"), converged, depth, guard);
+        const ErrorAgainstStill single = error_against(fresh, converged, depth, guard);
+        INFO(name << " at path frame " << last << ": against 16 still frames, filtered along the "
+                  << "path MAE " << filtered.mean_absolute << ", " << filtered.large
+                  << " pixels off by > " << ghost_threshold << "; a fresh frame MAE "
+                  << single.mean_absolute << ", " << single.large << " pixels; " << filtered.pixels
+                  << " pixels");
+        REQUIRE(filtered.pixels > settings.width * settings.height / 4);
+        REQUIRE(single.large > 0);
+        // Targets: history moved with the camera lowers the noise a fresh
+        // frame has, and rejected history leaves no more badly wrong pixels
+        // than a fresh frame has.
+        targets().check_at_most(name, "MAE, filtered / fresh", "path frame 30",
+                                filtered.mean_absolute / single.mean_absolute, 1.0);
+        targets().check_at_most(name, "pixels off by > 0.25, filtered / fresh", "path frame 30",
+                                double(filtered.large) / double(single.large), 1.0);
+    }
+    targets().write();
 }
 
 }  // namespace

@@ -1,13 +1,15 @@
 // The deepgi executable: bad input gives one line on stderr and exit status 2
 // and writes nothing; the same command twice gives the same bytes; --dump
-// writes finite PFM images.
+// writes every pass output finite and inside its documented range.
 #include "deepgi/image_io.hpp"
 #include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -182,30 +184,154 @@ TEST_CASE("cli: the same command twice writes identical images", "[runtime][cli]
     }
 }
 
-TEST_CASE("cli: the dump option writes every pass output as finite PFM images", "[runtime][cli]") {
+namespace {
+
+// The range docs/deepgi.md ("--dump DIR") gives each dumped output, by file
+// name prefix; `check` returns an empty string or what is wrong at one pixel.
+struct DumpRange {
+    std::string prefix;
+    int channels;
+    std::string (*check)(const float* pixel);
+};
+
+std::string in_range(float v, float low, float high) {
+    return std::isfinite(v) && v >= low && v <= high
+               ? std::string()
+               : fmt::format("{} outside [{}, {}]", v, low, high);
+}
+
+std::string unit_or_zero(const float* n, float tolerance) {
+    const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (length == 0.0f || std::abs(length - 1.0f) <= tolerance) return {};
+    return fmt::format("normal of length {}", length);
+}
+
+const std::vector<DumpRange>& dump_ranges() {
+    constexpr float inf = INFINITY;
+    static const std::vector<DumpRange> ranges = {
+        {"shadow-depth", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"gbuffer-depth-layer", 1, [](const float* p) { return in_range(p[0], 0, inf); }},
+        {"gbuffer-normal-layer", 3, [](const float* p) { return unit_or_zero(p, 1e-2f); }},
+        {"gbuffer-albedo-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, 1) +
+                    in_range(std::max({p[0], p[1], p[2]}), 0, 1);
+         }},
+        {"gbuffer-emissive-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        // Motion in pixels (x, y, 0): finite, and no further than the image is wide.
+        {"gbuffer-motion-layer", 3,
+         [](const float* p) {
+             return in_range(p[0], -1000, 1000) + in_range(p[1], -1000, 1000) +
+                    in_range(p[2], 0, 0);
+         }},
+        {"direct_light-radiance-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        {"backface-depth-layer", 1, [](const float* p) { return in_range(p[0], 0, inf); }},
+        {"depth_pyramid-level", 3,
+         [](const float* p) {
+             return in_range(std::min(p[0], p[1]), 0, inf) + in_range(p[2], 0, 0);
+         }},
+        // The march's visibility is in [0, 1] from the start (only the solid
+        // angle's raw estimate is signed).
+        {"ao-raw", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"ao-temporal", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"ao-blurred", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"radiosity_prepare-radiance-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        // Decoded octahedral normals, averaged over the MIP levels' texels:
+        // at most unit length.
+        {"radiosity_prepare-normal-layer", 3,
+         [](const float* p) {
+             return in_range(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 0, 1.01f);
+         }},
+        {"radiosity-raw-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        {"radiosity-irradiance-layer", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        {"radiosity-confidence-layer", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"radiosity-blurred-confidence", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
+        {"radiosity-blurred", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        {"compose-radiance", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
+         }},
+        {"tonemap-colour", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, 1) +
+                    in_range(std::max({p[0], p[1], p[2]}), 0, 1);
+         }},
+    };
+    return ranges;
+}
+
+}  // namespace
+
+TEST_CASE("cli: every dumped output is finite and inside its documented range", "[runtime][cli]") {
     const fs::path dir = scratch() / "dump";
     fs::remove_all(dir);
+    // The march, so the back-face outputs are dumped too.
     const RunResult result = run_deepgi(
         fmt::format("--headless --scene cornell --size 161x91 --frames 2 --generator previous "
-                    "--output '{}' --dump '{}'",
+                    "--ao-method march --output '{}' --dump '{}'",
                     (scratch() / "dump.png").string(), dir.string()));
     REQUIRE(result.status == 0);
+    std::map<std::string, int> files_per_range;
     int files = 0;
-    for (const char* name :
-         {"gbuffer-depth-layer0", "gbuffer-depth-layer1", "gbuffer-normal-layer0",
-          "gbuffer-normal-layer1", "gbuffer-albedo-layer0", "gbuffer-albedo-layer1",
-          "gbuffer-emissive-layer0", "gbuffer-motion-layer0", "shadow-depth",
-          "direct_light-radiance-layer0", "direct_light-radiance-layer1", "compose-radiance",
-          "tonemap-colour"}) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
         INFO(name);
-        const deepgi::FloatImage image = deepgi::read_pfm(dir / (std::string(name) + ".pfm"));
-        REQUIRE(deepgi::test::all_finite(image));
+        REQUIRE(entry.path().extension() == ".pfm");
+        // The longest prefix names the range ("radiosity-blurred-confidence"
+        // before "radiosity-blurred").
+        const DumpRange* range = nullptr;
+        for (const DumpRange& r : dump_ranges())
+            if (name.rfind(r.prefix, 0) == 0 && (!range || r.prefix.size() > range->prefix.size()))
+                range = &r;
+        // An output docs/deepgi.md does not describe yet fails here: add its row there and here.
+        REQUIRE(range != nullptr);
+        const deepgi::FloatImage image = deepgi::read_pfm(entry.path());
+        REQUIRE(image.channels == range->channels);
+        REQUIRE(image.width >= 1);
+        int outside = 0;
+        std::string first;
+        for (int y = 0; y < image.height; ++y) {
+            for (int x = 0; x < image.width; ++x) {
+                const std::string problem = range->check(
+                    &image.pixels[(std::size_t(y) * image.width + x) * image.channels]);
+                if (problem.empty()) continue;
+                if (outside++ == 0) first = fmt::format("({}, {}): {}", x, y, problem);
+            }
+        }
+        INFO(outside << " pixels outside the range, the first at " << first);
+        CHECK(outside == 0);
+        ++files_per_range[range->prefix];
         ++files;
     }
+    // Every documented output is there (the shadow map of cornell's
+    // directional light included).
+    for (const DumpRange& range : dump_ranges()) {
+        INFO(range.prefix);
+        CHECK(files_per_range[range.prefix] >= 1);
+    }
     const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
-    REQUIRE(colour.width == 161);
-    REQUIRE(colour.height == 91);
-    REQUIRE(files == 13);
+    CHECK(colour.width == 161);
+    CHECK(colour.height == 91);
+    // docs/deepgi.md: 56 files for cornell with the defaults.
+    CHECK(files == 56);
 }
 
 TEST_CASE("cli: a glTF file renders with its base colour factor and emissive",

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
 #include <iostream>
 
 using namespace deepgi;
@@ -161,9 +162,17 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "gbuffer: along the camera path reproject disagrees with peel on fewer pixels than previous",
+    "gbuffer: along the camera path reproject disagrees with peel on fewer pixels than previous, "
+    "within each scene's regression bounds",
     "[runtime][gbuffer]") {
     HeadlessContext context;
+    // Regression bounds, not targets: the share of layer-1 pixels disagreeing
+    // with peel, measured as in docs/deepgi.md (previous / reproject: cornell
+    // 3.09% / 0.28%, atrium 10.41% / 3.44%, warehouse 33.26% / 21.93%), about
+    // 10% above each (and 0.1 point at least), so a generator that gets worse
+    // fails even while it stays better than the other.
+    const std::map<std::string, std::pair<double, double>> regression_bound_percent = {
+        {"cornell", {3.4, 0.38}}, {"atrium", {11.5, 3.8}}, {"warehouse", {36.6, 24.2}}};
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
         const Scene scene = make_builtin_scene(scene_name);
         Renderer peel(scene, small_settings(Generator::peel),
@@ -202,5 +211,10 @@ TEST_CASE(
             scene_name, previous_percent, reproject_percent);
         REQUIRE(disagree_previous > 0);  // the path really moves
         REQUIRE(disagree_reproject < disagree_previous);
+        const auto [previous_bound, reproject_bound] = regression_bound_percent.at(scene_name);
+        INFO(scene_name << ": regression bounds previous " << previous_bound << "%, reproject "
+                        << reproject_bound << "%");
+        CHECK(previous_percent <= previous_bound);
+        CHECK(reproject_percent <= reproject_bound);
     }
 }

@@ -3,6 +3,7 @@
 // image writers (write_png / write_pfm) and deepgi itself are exercised, with
 // the shared writer (fileio/) underneath. Risky cases run in child processes.
 #include "../support/process.hpp"
+#include "../support/skip.hpp"
 #include "deepgi/image_io.hpp"
 
 #include <catch2/catch.hpp>
@@ -101,8 +102,8 @@ TEST_CASE("output files: deepgi on a full tmpfs exits 2 and keeps the old PNG",
           "[runtime][output]") {
     // A real full disk, where a private mount namespace can mount a tmpfs.
     if (run_command("unshare -rm true").status != 0) {
-        WARN("unshare -rm is not available here; the RLIMIT_FSIZE case covers the writer");
-        return;
+        spiral::test::skip_test(
+            "unshare -rm is not available here (the RLIMIT_FSIZE case still covers the writer)");
     }
     const fs::path dir = make_scratch_dir("output-tmpfs");
     const fs::path script = dir / "full.sh";

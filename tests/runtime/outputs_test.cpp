@@ -1,10 +1,16 @@
 // Pass outputs: finite everywhere, odd and tiny sizes, direct light against a
-// CPU evaluation of the same formula on the same G-buffer inputs.
+// CPU evaluation of the same formula on the same G-buffer inputs, the final
+// image against the filmic curve and sRGB encoding written from their formulas.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
 
 using namespace deepgi;
 
@@ -72,10 +78,13 @@ TEST_CASE(
     const FloatImage normal = renderer.read_pass_output("gbuffer-normal-layer0");
     const FloatImage albedo = renderer.read_pass_output("gbuffer-albedo-layer0");
     const FloatImage direct = renderer.read_pass_output("direct_light-radiance-layer0");
-    const glm::mat4 view = camera_view_matrix(scene.default_camera);
-    const glm::vec3 light_position = glm::vec3(view * glm::vec4(scene.key_light.position, 1.0f));
+    // Camera space from the textbook camera (support/textbook_camera.hpp).
+    const deepgi::test::TextbookCamera view =
+        deepgi::test::textbook_camera(scene.default_camera, settings);
+    const glm::vec3 light_position =
+        deepgi::test::textbook_point_to_camera(view, scene.key_light.position);
     const glm::vec3 spot_axis =
-        glm::normalize(glm::vec3(view * glm::vec4(scene.key_light.direction, 0.0f)));
+        glm::normalize(deepgi::test::textbook_direction_to_camera(view, scene.key_light.direction));
     int checked = 0;
     for (int y = 0; y < depth.height; y += 3) {
         for (int x = 0; x < depth.width; x += 3) {
@@ -123,9 +132,10 @@ TEST_CASE(
     renderer.render(current);
     const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
     const FloatImage motion = renderer.read_pass_output("gbuffer-motion-layer0");
-    const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(current));
-    const glm::mat4 previous_view_projection =
-        guard_band_projection(previous, settings) * camera_view_matrix(previous);
+    // Both cameras from the textbook formulas (support/textbook_camera.hpp),
+    // not the library's matrices the motion pass uses.
+    const deepgi::test::TextbookCamera now = deepgi::test::textbook_camera(current, settings);
+    const deepgi::test::TextbookCamera before = deepgi::test::textbook_camera(previous, settings);
     int checked = 0;
     float largest = 0.0f;
     for (int y = 0; y < depth.height; y += 2) {
@@ -133,13 +143,13 @@ TEST_CASE(
             const float d = depth.at(x, y);
             if (d <= 0.0f) continue;
             const glm::vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
-            const glm::vec3 camera_point =
-                deepgi::test::camera_ray(current, settings, pixel.x, pixel.y) * d;
-            const glm::vec4 clip =
-                previous_view_projection * camera_to_world * glm::vec4(camera_point, 1.0f);
-            if (clip.w <= 0.0f) continue;
-            const glm::vec2 previous_pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) *
-                                             glm::vec2(float(depth.width), float(depth.height));
+            const glm::vec3 world =
+                now.eye + deepgi::test::textbook_to_world(
+                              now, deepgi::test::textbook_camera_ray(now, pixel.x, pixel.y) * d);
+            const deepgi::test::TextbookProjection seen =
+                deepgi::test::textbook_project(before, world);
+            if (seen.depth <= 0.0f) continue;
+            const glm::vec2 previous_pixel = seen.pixel;
             const glm::vec2 expected = pixel - previous_pixel;
             const glm::vec2 actual(motion.at(x, y, 0), motion.at(x, y, 1));
             INFO("pixel " << x << "," << y << " expected " << expected.x << "," << expected.y
@@ -151,4 +161,72 @@ TEST_CASE(
     }
     REQUIRE(checked > 1000);
     REQUIRE(largest > 0.5f);  // the camera really moved between the frames
+}
+
+namespace {
+
+// Hable's filmic curve with the constants of his published operator
+// (shoulder 0.15, linear strength 0.50, linear angle 0.10, toe 0.20, toe
+// numerator 0.02, toe denominator 0.30, white 11.2, exposure bias 2), and the
+// sRGB transfer function of IEC 61966-2-1; written here from those formulas.
+double hable(double x) {
+    const double a = 0.15, b = 0.50, c = 0.10, d = 0.20, e = 0.02, f = 0.30;
+    return (x * (a * x + c * b) + d * e) / (x * (a * x + b) + d * f) - e / f;
+}
+
+double srgb_encode(double linear) {
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double display_value(double radiance, double exposure) {
+    const double mapped = std::clamp(hable(2.0 * radiance * exposure) / hable(11.2), 0.0, 1.0);
+    return srgb_encode(mapped);
+}
+
+}  // namespace
+
+TEST_CASE("outputs: the final image is the filmic curve and sRGB encoding of the exposed radiance",
+          "[runtime][outputs]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    for (float exposure : {1.0f, 0.3f, 4.0f}) {
+        RenderSettings settings;
+        settings.width = 96;
+        settings.height = 54;
+        settings.shadow_map_size = 256;
+        settings.exposure = exposure;
+        Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+        renderer.render(scene.default_camera);
+        const FloatImage radiance = renderer.read_pass_output("compose-radiance");
+        const FloatImage colour = renderer.read_pass_output("tonemap-colour");
+        const std::vector<std::uint8_t> bytes = renderer.read_output_rgba8();
+        const int guard = renderer.layout().guard;
+        REQUIRE(colour.width == settings.width);
+        REQUIRE(bytes.size() == std::size_t(settings.width) * settings.height * 4);
+        double lowest = 1.0, highest = 0.0, worst = 0.0;
+        int worst_code = 0;
+        for (int y = 0; y < colour.height; ++y) {
+            for (int x = 0; x < colour.width; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    const double expected =
+                        display_value(radiance.at(x + guard, y + guard, c), exposure);
+                    worst = std::max(worst, std::abs(colour.at(x, y, c) - expected));
+                    // The 8-bit output (rows bottom to top, as GL reads them).
+                    const int code = bytes[(std::size_t(y) * colour.width + x) * 4 + c];
+                    worst_code =
+                        std::max(worst_code, std::abs(code - int(std::lround(255.0 * expected))));
+                    lowest = std::min(lowest, expected);
+                    highest = std::max(highest, expected);
+                }
+            }
+        }
+        INFO("exposure " << exposure << ": largest difference " << worst << ", " << worst_code
+                         << " codes; expected values span [" << lowest << ", " << highest << "]");
+        // The display target holds 8 bits per channel: half a code of rounding,
+        // and a code for float evaluation order.
+        CHECK(worst <= 1.5 / 255.0);
+        CHECK(worst_code <= 1);
+        // Not a comparison of blacks or of clipped whites.
+        CHECK(highest - lowest > 0.3);
+    }
 }

@@ -46,6 +46,31 @@ void main() {
     return results;
 }
 
+TEST_CASE(
+    "rotation: the shared rotation hash gives MurmurHash3's finaliser values, computed "
+    "apart from it",
+    "[rotation]") {
+    // The CPU reference includes the shader's own pixel_rotation_hash.h, a
+    // piece shared between the oracle and the shader; so the hash is checked
+    // here on its own, against values computed outside this code base from
+    // its definition, h(x, y) = fmix32(x ^ fmix32(y + 0x9e3779b9)) with
+    // MurmurHash3's 32-bit finaliser fmix32 (docs/deep-sao.md).
+    // y = 2^32 - 0x9e3779b9 makes the inner fmix32(0) = 0, so h = fmix32(x):
+    // fmix32(1) = 0x514e28b7 is MurmurHash3's published finaliser value, and
+    // fmix32 fixes 0.
+    constexpr std::uint32_t inner_zero = 0x61c88647u;
+    CHECK(pixel_rotation_hash(1, inner_zero) == 0x514e28b7u);
+    CHECK(pixel_rotation_hash(0, inner_zero) == 0u);
+    CHECK(pixel_rotation_hash(0xdeadbeefu, inner_zero) == 0x0de5c6a9u);
+    // Pixels of a frame, by an independent evaluation of the definition.
+    CHECK(pixel_rotation_hash(0, 0) == 0xaa3e5b61u);
+    CHECK(pixel_rotation_hash(1, 0) == 0x6f0b28e6u);
+    CHECK(pixel_rotation_hash(0, 1) == 0x70f6c6d8u);
+    CHECK(pixel_rotation_hash(3839, 2159) == 0xf1c06fb5u);
+    CHECK(pixel_rotation_hash(12345, 678) == 0x1d539183u);
+    CHECK(pixel_rotation_hash(16383, 16383) == 0xb9769785u);
+}
+
 TEST_CASE("rotation: the GPU rotation hash equals the CPU one bit for bit up to 16K",
           "[rotation]") {
     HeadlessContext context;

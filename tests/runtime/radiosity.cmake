@@ -17,10 +17,16 @@ set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIME
 
 # Temporal filter of the AO (labels runtime and sao).
 add_executable(deepgi_ao_temporal_tests ao_temporal_test.cpp)
-target_link_libraries(deepgi_ao_temporal_tests PRIVATE deepgi_sao_reference spiral_catch_main)
+target_link_libraries(deepgi_ao_temporal_tests PRIVATE deepgi_sao_reference spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_ao_temporal_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
 target_compile_definitions(deepgi_ao_temporal_tests PRIVATE
   SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
   SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
 add_test(NAME deepgi_ao_temporal COMMAND deepgi_ao_temporal_tests "[ao_temporal]")
-set_tests_properties(deepgi_ao_temporal PROPERTIES LABELS "runtime;sao" TIMEOUT 600)
+set_tests_properties(deepgi_ao_temporal PROPERTIES LABELS "runtime;sao" TIMEOUT 600
+  FIXTURES_SETUP ao_temporal_figures)
+# The filter's targets under camera motion, printed; skipped while any is missed.
+add_test(NAME deepgi_ao_temporal_targets_missed
+  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "AO temporal targets" ao-temporal-targets.md)
+set_tests_properties(deepgi_ao_temporal_targets_missed PROPERTIES LABELS "runtime;sao"
+  FIXTURES_REQUIRED ao_temporal_figures SKIP_RETURN_CODE 77)

@@ -8,6 +8,7 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "support/targets.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -64,6 +65,30 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
     return error;
 }
 
+// The targets of the area estimator (docs/radiosity.md, "Accuracy against the
+// ray tracer"), relative to the truth's mean: |bias| <= 5%, MAE <= 10%. Both
+// are missed today; the regression bounds below are taken from the measured
+// values (about 10% above them), not targets. The table goes to
+// radiosity-accuracy-targets.md, printed by the ctest entry
+// "deepgi_radiosity_accuracy_targets_missed" (support/targets.hpp).
+constexpr double bias_target = 0.05, mae_target = 0.10;
+
+spiral::test::TargetTable& targets() {
+    // What remains of the bias is surface the G-buffer lacks: taps past the
+    // 11-pixel guard band (the 1 m radius spans about 60 pixels here), on
+    // ref-board the wall 15 cm behind the board (nearer than the 0.5 m layer
+    // separation), and the weight clamp of patches seen at a grazing angle;
+    // all make E low. The MAE is mostly the per-pixel noise of 19 taps x 8
+    // rotations; the truth's own 2% per pixel averages out over these pixels.
+    static spiral::test::TargetTable table(
+        "radiosity-accuracy-targets.md",
+        {{"area/ref-crease/relative abs(bias)/8 frames", {0.065, "measured 0.057"}},
+         {"area/ref-board/relative abs(bias)/8 frames", {0.105, "measured 0.095"}},
+         {"area/ref-crease/relative MAE/8 frames", {0.155, "measured 0.14"}},
+         {"area/ref-board/relative MAE/8 frames", {0.19, "measured 0.17"}}});
+    return table;
+}
+
 }  // namespace
 
 TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradiance's mean",
@@ -100,23 +125,15 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     INFO(name << ": truth mean " << area.truth_mean << " over " << area.pixels
               << " pixels; area MAE " << area.mae << " bias " << area.bias << "; published MAE "
               << published.mae << " bias " << published.bias);
-    WARN(name << ": relative to the truth's mean " << area.truth_mean << ": area MAE "
-              << area.mae / area.truth_mean << " bias " << area.bias / area.truth_mean
-              << ", published MAE " << published.mae / area.truth_mean << " bias "
-              << published.bias / area.truth_mean);
     REQUIRE(area.pixels > width * height / 4);
     REQUIRE(area.truth_mean > 0.01);
-    // What remains of the bias is surface the G-buffer lacks: taps past the
-    // 11-pixel guard band (the 1 m radius spans about 60 pixels here), on
-    // ref-board the wall 15 cm behind the board (nearer than the 0.5 m layer
-    // separation), and the weight clamp of patches seen at a grazing angle.
-    // All make E low by a few percent (measured -5.7% and -9.5%). The MAE is
-    // mostly the per-pixel noise of 19 taps x 8 rotations (measured 14% and
-    // 17%); the truth's own 2% per pixel averages out over these pixels.
-    CHECK(std::abs(area.bias) <= 0.15 * area.truth_mean);
-    CHECK(area.mae <= 0.3 * area.truth_mean);
-    // The published normalisation is far off on the same pixels, so the
-    // bounds above tell the estimators apart.
+    targets().check_at_most("area/" + name, "relative abs(bias)", "8 frames",
+                            std::abs(area.bias) / area.truth_mean, bias_target);
+    targets().check_at_most("area/" + name, "relative MAE", "8 frames", area.mae / area.truth_mean,
+                            mae_target);
+    targets().write();
+    // The published normalisation is far off on the same pixels (measured
+    // +300%), so the bounds above tell the estimators apart.
     CHECK(published.bias > 0.5 * area.truth_mean);
 }
 

@@ -4,6 +4,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "support/runtime_support.hpp"
+#include "support/textbook_camera.hpp"
 
 #include <glm/glm.hpp>
 
@@ -21,23 +22,19 @@ struct RayHits {
 };
 
 // Camera-space ray through an internal (guard-banded) pixel position, with
-// z = -1 so the hit parameter t equals the linear camera depth.
+// z = -1 so the hit parameter t equals the linear camera depth. The camera is
+// the textbook one (support/textbook_camera.hpp), not the library's matrices.
 inline glm::vec3 camera_ray(const Camera& camera, const RenderSettings& settings, float px,
                             float py) {
-    const FrameLayout layout = frame_layout(settings);
-    const glm::mat4 projection = guard_band_projection(camera, settings);
-    const float ndc_x = px / float(layout.internal_width) * 2.0f - 1.0f;
-    const float ndc_y = py / float(layout.internal_height) * 2.0f - 1.0f;
-    return {ndc_x / projection[0][0], ndc_y / projection[1][1], -1.0f};
+    return textbook_camera_ray(textbook_camera(camera, settings), px, py);
 }
 
 // Front faces only (counter-clockwise), as the G-buffer culls back faces.
 inline RayHits ray_cast(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                         float px, float py, float min_separation) {
-    const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(camera));
+    const TextbookCamera textbook = textbook_camera(camera, settings);
     const glm::vec3 origin = camera.position;
-    const glm::vec3 direction =
-        glm::vec3(camera_to_world * glm::vec4(camera_ray(camera, settings, px, py), 0.0f));
+    const glm::vec3 direction = textbook_to_world(textbook, textbook_camera_ray(textbook, px, py));
     std::vector<std::pair<float, int>> hits;
     for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
         const glm::vec3 a = scene.vertices[scene.indices[t]].position;

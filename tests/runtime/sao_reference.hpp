@@ -2,6 +2,16 @@
 // CPU evaluation of the deep SAO pass (docs/design.md, section 5.6) and of the
 // rotated-grid depth pyramid, written from the formulas rather than from the
 // shaders, as the oracle the GPU read-backs are compared with.
+// Shared with the shaders rather than derived, so that the comparison can be
+// per pixel:
+// - the per-pixel rotation hash includes shaders/pixel_rotation_hash.h itself;
+//   that hash is checked on its own against values computed from its
+//   definition (pixel_rotation_test.cpp);
+// - the march repeats sao.frag's choices that no formula fixes: the seed of
+//   its per-pixel step offset (0x68e31da4), its golden-angle ray disk, the
+//   solid's minimum of two steps, and the 1e-3 z tolerance behind a stored
+//   plane; the obscurance's epsilon 1e-4 likewise. A change to any of them
+//   in the shader must be made here too; it is not checked independently.
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 

@@ -2,7 +2,10 @@
 // compile errors reported against the original file and line.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/renderer.hpp"
+#include "deepgi/scene.hpp"
 #include "deepgi/shader_loader.hpp"
+#include "pass.hpp"
 #include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -87,16 +90,29 @@ TEST_CASE("shader loader: a compile error is reported against the included file 
     }
 }
 
-TEST_CASE("shader loader: every shipped pass compiles", "[runtime][shader_loader]") {
+TEST_CASE("shader loader: every pass of the pass list builds its programs, and they all link",
+          "[runtime][shader_loader]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    REQUIRE_NOTHROW(loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                          {GL_GEOMETRY_SHADER, "gbuffer.geom"},
-                                          {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
-                                         "#define SINGLE_PASS 1\n"));
-    for (const char* fragment :
-         {"direct_light.frag", "compose.frag", "tonemap.frag", "debug_view.frag"}) {
-        REQUIRE_NOTHROW(loader.build_program(
-            {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}));
+    const Scene scene = make_builtin_scene("cornell");
+    // Each pass builds every program it may use when it is made (a setting
+    // never compiles a shader later), so making each pass of the list the
+    // frame runs compiles and links every shipped program; build_program
+    // throws on any compile or link error.
+    int passes = 0;
+    for (const PassFactory make : default_pass_list()) {
+        const int before = loader.programs_built();
+        std::unique_ptr<Pass> pass;
+        REQUIRE_NOTHROW(pass = make(loader, scene));
+        const int built = loader.programs_built() - before;
+        INFO("pass " << pass->name() << " built " << built << " programs");
+        CHECK(built >= 1);
+        ++passes;
     }
+    CHECK(passes == int(default_pass_list().size()));
+    // At least one program per pass, and the passes with variants build more
+    // (peel's two layers and the single-pass G-buffer, the masked shadow and
+    // back-face programs, the base and reduce levels of the pyramids).
+    INFO(loader.programs_built() << " programs from " << passes << " passes");
+    CHECK(loader.programs_built() > passes);
 }
