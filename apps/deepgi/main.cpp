@@ -17,6 +17,8 @@
 #include <fmt/format.h>
 #include <spiral/fileio.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -132,9 +134,18 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::HeadlessContext context;
     deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    // A labelled bar for long runs, only where someone watches.
+    const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {
         renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
                                             : scene.default_camera);
+        if (show_progress) {
+            const int width = 40, filled = width * (frame + 1) / options.frames;
+            fmt::print(stderr, "\rdeepgi: frames rendered [{:<{}}] {}/{}",
+                       std::string(std::size_t(filled), '#'), width, frame + 1, options.frames);
+            if (frame + 1 == options.frames) fmt::print(stderr, "\n");
+            std::fflush(stderr);
+        }
     }
     // The PNG is committed only after the dump is complete: a failed dump
     // leaves neither.

@@ -66,6 +66,13 @@ int run(CommandOptions& options) {
         fmt::print("{}\n", line);
         std::fflush(stdout);
     };
+    // Labelled progress where someone watches; logs stay as they were.
+    if (isatty(fileno(stderr))) {
+        options.report.progress = [](int done, int total, const std::string& step) {
+            fmt::print(stderr, "deepgi report: steps done {}/{}, now: {}\n", done, total, step);
+            std::fflush(stderr);
+        };
+    }
     deepgi::HeadlessContext context;
     const auto result = deepgi::report::run_report(options.report);
     fmt::print("report: {} rows in {:.0f} s, written to {}\n", result.rows.size(),

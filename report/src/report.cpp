@@ -548,7 +548,15 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.image_pattern = image_pattern;
     result.info.image_taps = image_taps;
 
+    const int steps = int(options.scenes.size()) + (options.stability ? 1 : 0) +
+                      (options.float_max_n > 0 ? 1 : 0);
+    int steps_done = 0;
+    auto step = [&](const std::string& name) {
+        if (options.progress) options.progress(steps_done, steps, name);
+        ++steps_done;
+    };
     for (const std::string& scene_name : options.scenes) {
+        step("scene " + scene_name);
         const Scene scene = load_scene(scene_name);
         const Camera& camera = scene.default_camera;
 
@@ -817,6 +825,7 @@ ReportResult run_report(const ReportOptions& options) {
     }
 
     if (options.stability) {
+        step("stability cases");
         const auto stability_start = std::chrono::steady_clock::now();
         result.stability =
             run_stability_cases(hard_cases::Parameters{}, options.ao_methods, options.log);
@@ -832,6 +841,7 @@ ReportResult run_report(const ReportOptions& options) {
         fs::remove(options.output / "stability.csv");
     }
     if (options.float_max_n > 0) {
+        step("float against exact search");
         const auto float_start = std::chrono::steady_clock::now();
         result.float_choices =
             spiral_float::compare_float_search(options.float_max_n, options.threads);
