@@ -61,6 +61,7 @@ const std::vector<PassFactory>& default_pass_list() {
         make_compose_pass,            //
         make_tonemap_pass,            // final image only
         make_debug_view_pass,         // any other view
+        make_antialias_pass,          // final image only, after the tonemap
     };
     return passes;
 }
