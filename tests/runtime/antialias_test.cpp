@@ -19,12 +19,13 @@ struct Grey {
     int width = 0;
     int height = 0;
     std::vector<float> value;  // one per pixel, rows bottom to top
-    float at(int x, int y) const { return value[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    float at(int x, int y) const {
+        return value[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
 };
 
 // Runs the filter on an RGBA8 image and returns the RGBA8 result.
-std::vector<std::uint8_t> run_filter(const std::vector<std::uint8_t>& rgba, int width,
-                                     int height) {
+std::vector<std::uint8_t> run_filter(const std::vector<std::uint8_t>& rgba, int width, int height) {
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     Antialias antialias = create_antialias(loader);
     gl::Texture source = gl::create_texture_2d(GL_RGBA8, width, height);
@@ -76,7 +77,7 @@ Grey edge_image(int width, int height, const std::function<bool(float, float)>& 
 }
 
 struct EdgeMeasure {
-    double mean_error = 0.0;  // against the coverage, over the pixels the edge crosses
+    double mean_error = 0.0;    // against the coverage, over the pixels the edge crosses
     float largest_step = 0.0f;  // largest jump between neighbours along the edge
 };
 

@@ -32,8 +32,10 @@ std::unique_ptr<Pass> make_antialias_pass(const ShaderLoader& loader, const Scen
 // runs it back into the display; tests run it on hand-made images).
 struct Antialias {
     gl::Program program;
-    shader_shared::AntialiasParameters parameters{
-        .edge_threshold = 0.125f, .edge_threshold_min = 0.0312f, .subpixel = 0.75f, .unused0 = 0.0f};
+    shader_shared::AntialiasParameters parameters{.edge_threshold = 0.125f,
+                                                  .edge_threshold_min = 0.0312f,
+                                                  .subpixel = 0.75f,
+                                                  .unused0 = 0.0f};
     ParameterBlock<shader_shared::AntialiasParameters> block;
 };
 Antialias create_antialias(const ShaderLoader& loader);
