@@ -248,13 +248,13 @@ TEST_CASE("spiralgen: --compare-published verdicts agree with the exact evaluato
             }
         }
         ties += verdict == "ties";
-        const std::string expected_start =
-            std::to_string(n) + "," + std::to_string(tau) + "," + std::to_string(k) + ",";
+        std::ostringstream start, end;
+        start << n << ',' << tau << ',' << k << ',';
+        end << ',' << minimum[std::size_t(n)] << ',' << 4 * n * n << ',' << verdict << ','
+            << optimal_for;
         INFO("n = " << n << ": " << line);
-        CHECK(line.rfind(expected_start, 0) == 0);
-        CHECK(line.find("," + std::to_string(minimum[std::size_t(n)]) + "," +
-                        std::to_string(4 * n * n) + "," + verdict + "," + optimal_for) !=
-              std::string::npos);
+        CHECK(line.rfind(start.str(), 0) == 0);
+        CHECK(line.find(end.str()) != std::string::npos);
     }
     // The paper's own example: tau = 7 for 9 taps is a minimiser (docs/optimizer.md),
     // but the published entry for n = 9 is 2, also a minimiser.
