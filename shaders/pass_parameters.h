@@ -50,4 +50,13 @@ struct BlurParameters {
   float world_extent;     // m from the centre at which a tap weighs nothing (0: no limit)
 };
 
+// The anti-aliasing after the tonemap (antialias.frag).
+struct AntialiasParameters {
+  float edge_threshold;      // local luma range, as a fraction of its highest luma, below which
+                             // a pixel is left alone
+  float edge_threshold_min;  // and an absolute floor for dark regions (sRGB-encoded luma)
+  float subpixel;            // strength of the sub-pixel blend, 0 to 1
+  float unused0;
+};
+
 #endif

@@ -1,6 +1,8 @@
 #include "command_line.hpp"
 
 #include "deepgi/errors.hpp"
+#include "deepgi/scene.hpp"
+#include "deepgi/window_controls.hpp"
 
 #include <fmt/format.h>
 #include <spiral/fileio.hpp>
@@ -9,6 +11,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 namespace deepgi_app {
 
@@ -27,6 +30,36 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const
         return exit_bad_input;
     }
     return std::nullopt;
+}
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+}  // namespace
+
+std::string help_footer() {
+    return fmt::format(
+        "Subcommands (each has its own --help):\n"
+        "  deepgi reference ...  ray-traced ambient visibility and one-bounce irradiance of a "
+        "scene, as PFM images with PNG previews (docs/reference.md)\n"
+        "  deepgi report ...     deep SAO speed against error for tap patterns, tap counts and "
+        "layers, with figures (docs/report.md)\n"
+        "\n"
+        "Scenes (--scene, also for the subcommands):\n"
+        "  {}  built-in scenes\n"
+        "  {}  small scenes for measuring deep SAO against the reference "
+        "(docs/reference.md)\n"
+        "  FILE.gltf, FILE.glb  a glTF 2.0 file (docs/deepgi.md)\n"
+        "\n"
+        "Window keys:\n  {}\n{}\n--script FILE drives the window frame by frame "
+        "(docs/deepgi.md, 'Interactive window').",
+        joined(deepgi::builtin_scene_names()), joined(deepgi::reference_scene_names()),
+        deepgi::movement_help(), deepgi::key_help_text());
 }
 
 int run_reporting_errors(std::string_view command, const std::function<int()>& work) {

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace deepgi_app {
@@ -17,6 +18,11 @@ inline constexpr int exit_bad_input = 2;
 // stop here: 0 after printing --help, exit_bad_input after a parse error.
 std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const* argv,
                                       std::string_view command);
+
+// The end of `deepgi --help`: the subcommands, every scene --scene accepts,
+// and the window's keys, so that nothing the program does needs the docs to
+// be found.
+std::string help_footer();
 
 // Runs the command's work; InputError and output-file errors are bad input.
 int run_reporting_errors(std::string_view command, const std::function<int()>& work);

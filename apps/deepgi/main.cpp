@@ -6,14 +6,18 @@
 #include "deepgi/interactive.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/image_io.hpp"
+#include "deepgi/scene.hpp"
 #include "deepgi/window_controls.hpp"
 #include "command_line.hpp"
+#include "help_formatter.hpp"
 #include "reference_command.hpp"
 #include "report_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spiral/fileio.hpp>
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -130,9 +134,18 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::HeadlessContext context;
     deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    // A labelled bar for long runs, only where someone watches.
+    const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {
         renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
                                             : scene.default_camera);
+        if (show_progress) {
+            const int width = 40, filled = width * (frame + 1) / options.frames;
+            fmt::print(stderr, "\rdeepgi: frames rendered [{:<{}}] {}/{}",
+                       std::string(std::size_t(filled), '#'), width, frame + 1, options.frames);
+            if (frame + 1 == options.frames) fmt::print(stderr, "\n");
+            std::fflush(stderr);
+        }
     }
     // The PNG is committed only after the dump is complete: a failed dump
     // leaves neither.
@@ -169,52 +182,61 @@ int main(int argc, char** argv) {
         "deepgi: deep G-buffer demo renderer (OpenGL 4.5). Without --headless it opens an "
         "interactive window (GLFW + Dear ImGui panel that edits every setting below and the "
         "light live); with --headless it renders through EGL and writes --output."};
-    // --help shows every default.
+    // --help shows every default, in words (help_formatter.hpp).
     app.option_defaults()->always_capture_default();
-    app.footer(
-        fmt::format("Window keys:\n  {}\n{}\n--script FILE drives the window frame by "
-                    "frame (docs/deepgi.md, 'Interactive window').",
-                    deepgi::movement_help(), deepgi::key_help_text()));
+    spiral_apps::use_help_formatter(app);
+    app.footer(deepgi_app::help_footer());
     app.add_flag("--headless", options.headless,
                  "Render without a window (EGL) and write --output");
     app.add_flag("--hidden-window", options.hidden_window,
                  "With --headless: render in a hidden GLFW window instead of EGL (needs an X "
                  "server, e.g. xvfb-run)");
-    app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
+    app.add_option("--scene", options.scene,
+                   "A built-in scene (listed at the end) or a .gltf/.glb file");
     app.add_option("--scene-limit", options.scene_limits,
                    "Raise a scene file limit (also for files dropped onto the window), NAME=VALUE: "
                    "json-depth, node-visits, "
-                   "triangles, texture-side, texture-bytes (docs/hardening.md)");
-    app.add_option(
-        "--size", options.size,
-        fmt::format("Image size WIDTHxHEIGHT (1 to {} per side)", deepgi::limits::max_image_side));
+                   "triangles, texture-side, texture-bytes (docs/hardening.md)")
+        ->default_str("the limits in docs/hardening.md");
+    app.add_option("--size", options.size,
+                   fmt::format("Image size WIDTHxHEIGHT in pixels (1 to {} per side)",
+                               deepgi::limits::max_image_side))
+        ->default_str("1280x720 pixels");
     app.add_option("--max-gpu-memory", options.max_gpu_mib,
-                   "Refuse a --size/--guard-band whose render targets need more MiB than this")
-        ->capture_default_str()
-        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
-    app.add_option("--frames", options.frames, "Frames to render before writing the output");
-    app.add_option("--output", options.output, "PNG file to write (headless)");
+                   "Refuse a --size/--guard-band whose render targets need more than this "
+                   "many MiB (1 to 2^40)")
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))
+        ->default_str("4096 MiB");
+    app.add_option("--frames", options.frames,
+                   "Frames to render before writing the output (headless)")
+        ->default_str("1 frame");
+    app.add_option("--output", options.output, "PNG file to write (headless)")
+        ->default_str("none; --headless needs one");
     app.add_option("--generator", options.generator,
                    "Deep G-buffer generator: " + deepgi::enum_name_list<deepgi::Generator>());
     app.add_option("--view", options.view,
                    "Image to show: " + deepgi::enum_name_list<deepgi::DebugView>());
     app.add_option("--dump", options.dump,
-                   "Directory for 32-bit float PFM images of every pass output (headless)");
+                   "Directory for 32-bit float PFM images of every pass output (headless)")
+        ->default_str("none, no dump");
     app.add_option("--timing", options.timing,
                    "Pass timing: " + deepgi::enum_name_list<deepgi::TimingMode>() +
                        " (cpu: glFinish and a CPU clock; gpu: timer queries)");
     app.add_option("--camera", options.camera,
-                   "View through the glTF file's camera of this name or index (default: its "
-                   "first perspective camera); in the window, R resets to it");
+                   "View through the glTF file's camera of this name or index; in the window, R "
+                   "resets to it")
+        ->default_str("the file's first perspective camera, else a fitted view");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
     app.add_flag("--print-timings", options.print_timings,
                  "Print the last frame's per-pass milliseconds");
     app.add_option("--script", options.script,
                    "Window only: run the window from a script of per-frame commands (set, key, "
-                   "screenshot, drop, quit; docs/deepgi.md)");
+                   "screenshot, drop, quit; docs/deepgi.md)")
+        ->default_str("none");
     app.add_option("--screenshot-dir", options.screenshot_directory,
-                   "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory");
+                   "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory")
+        ->default_str("the current directory");
     app.add_flag("--gl-debug", options.gl_debug,
                  "Turn GL errors into an error that names the pass (KHR_debug callback)");
     // Which indirect terms compose adds (docs/radiosity.md, "What each part adds").
@@ -252,7 +274,7 @@ int main(int argc, char** argv) {
             app.add_option(fmt::format("--{}", row.name), options.numeric[i],
                            fmt::format("{} ({})", row.help, deepgi::describe_limits(row)))
                 ->type_name(row.integer ? "INT" : "FLOAT")
-                ->default_str(fmt::format("{}", row.get(defaults)))
+                ->default_str(spiral_apps::with_unit(row.get(defaults), row.unit))
                 ->group(row.group == "frame"       ? "Frame"
                         : row.group == "ao"        ? "Deep SAO"
                         : row.group == "radiosity" ? "Deep radiosity"

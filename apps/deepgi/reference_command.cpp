@@ -5,12 +5,15 @@
 #include "reference_command.hpp"
 
 #include "command_line.hpp"
+#include "help_formatter.hpp"
+#include "reference_preview.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/settings.hpp"
 #include "deepgi/reference.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -103,13 +107,23 @@ int run(const ReferenceOptions& options) {
     settings.seed = options.seed;
     settings.threads = options.threads;
     // A progress bar only where someone watches; logs stay clean.
+    // The library reports the ambient visibility, then the irradiance (each
+    // when traced), each ending with done == total.
     if (isatty(fileno(stderr))) {
-        settings.progress = [](long long done, long long total) {
+        auto phases = std::make_shared<std::vector<std::string>>();
+        if (!options.no_ao) phases->push_back("ambient visibility");
+        if (!options.no_irradiance) phases->push_back("irradiance");
+        auto phase = std::make_shared<std::size_t>(0);
+        settings.progress = [phases, phase](long long done, long long total) {
             const int width = 40;
             const int filled = total > 0 ? int(width * done / total) : width;
-            fmt::print(stderr, "\r[{:<{}}] {:3d}%", std::string(filled, '#'), width,
-                       total > 0 ? int(100 * done / total) : 100);
-            if (done >= total) fmt::print(stderr, "\n");
+            const std::string& label = *phase < phases->size() ? (*phases)[*phase] : phases->back();
+            fmt::print(stderr, "\rdeepgi reference: {:<18} pixels [{:<{}}] {:3d}%", label,
+                       std::string(filled, '#'), width, total > 0 ? int(100 * done / total) : 100);
+            if (done >= total) {
+                fmt::print(stderr, "\n");
+                ++*phase;
+            }
             std::fflush(stderr);
         };
     }
@@ -122,16 +136,51 @@ int run(const ReferenceOptions& options) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    fs::create_directories(output);
-    deepgi::write_pfm(output / "reference-depth-layer0.pfm", images.depth_layer0);
-    deepgi::write_pfm(output / "reference-depth-layer1.pfm", images.depth_layer1);
+    // Every image as PFM with its PNG preview beside it; the whole set is
+    // written before any file is committed, so a failure leaves none.
+    using deepgi_app::PreviewMapping;
+    struct Output {
+        const char* name;
+        const deepgi::FloatImage* image;
+        PreviewMapping preview;
+    };
+    std::vector<Output> outputs = {
+        {"reference-depth-layer0", &images.depth_layer0, PreviewMapping::depth},
+        {"reference-depth-layer1", &images.depth_layer1, PreviewMapping::depth}};
     if (settings.ambient_visibility) {
-        deepgi::write_pfm(output / "reference-ao-visibility.pfm", images.ambient_visibility);
-        deepgi::write_pfm(output / "reference-ao-hit-visibility.pfm", images.hit_visibility);
-        deepgi::write_pfm(output / "reference-ao-occlusion-split.pfm", images.occlusion_split);
-        deepgi::write_pfm(output / "reference-ao-standard-error.pfm", images.standard_error);
-        deepgi::write_pfm(output / "reference-ao-rays.pfm", images.rays);
+        outputs.insert(
+            outputs.end(),
+            {{"reference-ao-visibility", &images.ambient_visibility, PreviewMapping::unit},
+             {"reference-ao-hit-visibility", &images.hit_visibility, PreviewMapping::unit},
+             {"reference-ao-occlusion-split", &images.occlusion_split, PreviewMapping::unit},
+             {"reference-ao-standard-error", &images.standard_error, PreviewMapping::normalised},
+             {"reference-ao-rays", &images.rays, PreviewMapping::normalised}});
+    }
+    if (settings.irradiance) {
+        outputs.insert(
+            outputs.end(),
+            {{"reference-irradiance", &images.irradiance, PreviewMapping::irradiance},
+             {"reference-irradiance-standard-error", &images.irradiance_standard_error,
+              PreviewMapping::normalised},
+             {"reference-irradiance-rays", &images.irradiance_rays, PreviewMapping::normalised},
+             {"reference-direct-radiance", &images.direct_radiance, PreviewMapping::radiance}});
+    }
+    fs::create_directories(output);
+    std::vector<std::unique_ptr<spiral::fileio::AtomicFile>> files;
+    for (const Output& entry : outputs) {
+        const auto pfm = deepgi::encode_pfm(*entry.image);
+        files.push_back(std::make_unique<spiral::fileio::AtomicFile>(
+            output / (std::string(entry.name) + ".pfm")));
+        files.back()->write(pfm.data(), pfm.size());
+        const auto png = deepgi::encode_png(entry.image->width, entry.image->height,
+                                            deepgi_app::preview_rgba8(*entry.image, entry.preview));
+        files.push_back(std::make_unique<spiral::fileio::AtomicFile>(
+            output / (std::string(entry.name) + ".png")));
+        files.back()->write(png.data(), png.size());
+    }
+    for (auto& file : files) file->commit();
 
+    if (settings.ambient_visibility) {
         double max_error = 0.0, ray_total = 0.0;
         long long surface = 0, above = 0;
         for (std::size_t i = 0; i < images.standard_error.pixels.size(); ++i) {
@@ -147,11 +196,6 @@ int run(const ReferenceOptions& options) {
             surface, surface ? ray_total / double(surface) : 0.0, max_error, above, seconds);
     }
     if (settings.irradiance) {
-        deepgi::write_pfm(output / "reference-irradiance.pfm", images.irradiance);
-        deepgi::write_pfm(output / "reference-irradiance-standard-error.pfm",
-                          images.irradiance_standard_error);
-        deepgi::write_pfm(output / "reference-irradiance-rays.pfm", images.irradiance_rays);
-        deepgi::write_pfm(output / "reference-direct-radiance.pfm", images.direct_radiance);
         // Errors relative to each pixel's E, over pixels that receive light;
         // the largest channel's standard error per pixel against 0.005.
         double ray_total = 0.0, mean_e = 0.0, mean_error = 0.0, max_relative = 0.0;
@@ -200,31 +244,54 @@ int run_reference_command(int argc, char** argv) {
     CLI::App app{
         "deepgi reference: ray-traced ambient visibility and one-bounce irradiance on layer 0's "
         "pixel grid"};
-    app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
-    app.add_option("--size", options.size, "Viewport size WIDTHxHEIGHT (guard band added)");
-    app.add_option("--output", options.output, "Directory for the PFM images");
-    app.add_option("--rays", options.rays, "Most rays per pixel");
-    app.add_option("--min-rays", options.min_rays, "Fewest rays per pixel");
+    app.option_defaults()->always_capture_default();
+    spiral_apps::use_help_formatter(app);
+    app.add_option("--scene", options.scene,
+                   "A built-in scene (listed by deepgi --help) or a .gltf/.glb file");
+    app.add_option("--size", options.size,
+                   "Viewport size WIDTHxHEIGHT in pixels (guard band added)")
+        ->default_str("1280x720 pixels");
+    app.add_option("--output", options.output,
+                   "Directory for the PFM images and their PNG previews")
+        ->default_str("none; reference needs one");
+    app.add_option("--rays", options.rays, "Most ambient-visibility rays per pixel")
+        ->default_str(fmt::format("{} rays", options.rays));
+    app.add_option("--min-rays", options.min_rays, "Fewest ambient-visibility rays per pixel")
+        ->default_str(fmt::format("{} rays", options.min_rays));
     app.add_option("--target-error", options.target_error,
-                   "Stop adding rays once the standard error (times 1.3) is below this");
+                   "Stop adding rays once the standard error of the visibility (a fraction, "
+                   "times 1.3) is below this");
     app.add_option("--seed", options.seed, "Random seed (same seed, same images)");
-    app.add_option("--threads", options.threads, "Worker threads (0: all)");
-    app.add_option("--ao-radius", options.radius, row_help("ao-radius"));
-    app.add_option("--guard-band", options.guard_band, row_help("guard-band"));
-    app.add_option("--min-separation", options.min_separation, row_help("min-separation"));
+    app.add_option("--threads", options.threads, "Worker threads (0: all hardware threads)")
+        ->default_str("0, all hardware threads");
+    const deepgi::RenderSettings defaults;
+    auto with_unit = [](float value, std::string_view name) {
+        return spiral_apps::with_unit(value, row(name).unit);
+    };
+    app.add_option("--ao-radius", options.radius, row_help("ao-radius"))
+        ->default_str(with_unit(defaults.ao.radius, "ao-radius"));
+    app.add_option("--guard-band", options.guard_band, row_help("guard-band"))
+        ->default_str(fmt::format("{} of the height", defaults.guard_band_fraction));
+    app.add_option("--min-separation", options.min_separation, row_help("min-separation"))
+        ->default_str(with_unit(defaults.min_separation, "min-separation"));
     app.add_flag("--no-ao", options.no_ao, "Do not trace ambient visibility");
     app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
-    app.add_option("--radiosity-radius", options.radiosity_radius, row_help("radiosity-radius"));
+    app.add_option("--radiosity-radius", options.radiosity_radius, row_help("radiosity-radius"))
+        ->default_str(with_unit(defaults.radiosity.radius, "radiosity-radius"));
     app.add_option("--irradiance-rays", options.irradiance_rays,
-                   "Most irradiance rays per pixel (cosine directions and emitter shadow rays)");
+                   "Most irradiance rays per pixel (cosine directions and emitter shadow rays)")
+        ->default_str(fmt::format("{} rays", options.irradiance_rays));
     app.add_option("--irradiance-min-rays", options.irradiance_min_rays,
-                   "Fewest irradiance rays per pixel");
+                   "Fewest irradiance rays per pixel")
+        ->default_str(fmt::format("{} rays", options.irradiance_min_rays));
     app.add_option("--irradiance-ceiling-rays", options.irradiance_ceiling_rays,
                    "Most irradiance rays per pixel whose standard error is still at or above "
-                   "0.005 after --irradiance-rays");
+                   "0.005 after --irradiance-rays")
+        ->default_str(fmt::format("{} rays", options.irradiance_ceiling_rays));
     app.add_option("--irradiance-target-error", options.irradiance_target_error,
                    "Stop adding irradiance rays once every channel's standard error (times "
-                   "1.3) is below this fraction of E, or 0.002, and below 0.005");
+                   "1.3) is below this fraction of E, or 0.002, and below 0.005")
+        ->default_str(fmt::format("{} of E", options.irradiance_target_error));
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi reference"))
         return *status;
     return run_reporting_errors("deepgi reference", [&] { return run(options); });

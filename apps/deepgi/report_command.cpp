@@ -5,6 +5,7 @@
 
 #include "deepgi/context.hpp"
 #include "command_line.hpp"
+#include "help_formatter.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/settings.hpp"
 #include "deepgi/report.hpp"
@@ -27,6 +28,8 @@ struct CommandOptions {
     std::string size = "320x180";
     std::string output;
     bool plots = true;
+    bool no_plots = false;
+    bool no_stability = false;
     std::string python = "/usr/bin/python3";
     std::string plot_script = DEEPGI_PLOT_REPORT_SCRIPT;
 };
@@ -63,6 +66,13 @@ int run(CommandOptions& options) {
         fmt::print("{}\n", line);
         std::fflush(stdout);
     };
+    // Labelled progress where someone watches; logs stay as they were.
+    if (isatty(fileno(stderr))) {
+        options.report.progress = [](int done, int total, const std::string& step) {
+            fmt::print(stderr, "deepgi report: steps done {}/{}, now: {}\n", done, total, step);
+            std::fflush(stderr);
+        };
+    }
     deepgi::HeadlessContext context;
     const auto result = deepgi::report::run_report(options.report);
     fmt::print("report: {} rows in {:.0f} s, written to {}\n", result.rows.size(),
@@ -83,42 +93,72 @@ int run_report_command(int argc, char** argv) {
     CommandOptions options;
     deepgi::report::ReportOptions& report = options.report;
     CLI::App app{"deepgi report: deep SAO speed against error for tap patterns, counts, layers"};
-    app.add_option("--scenes", report.scenes, "Scenes (built-in names or glTF files)")
-        ->delimiter(',');
-    app.add_option("--taps", report.taps, "Tap counts")->delimiter(',');
-    app.add_option("--patterns", report.patterns, "optimal, tau1, golden, m2, m4, m8")
-        ->delimiter(',');
-    app.add_option("--layers", report.layers, "Layer counts (1, 2)")->delimiter(',');
+    app.option_defaults()->always_capture_default();
+    spiral_apps::use_help_formatter(app);
+    auto listed = [](const auto& values) {
+        std::string text;
+        for (const auto& value : values)
+            text += fmt::format("{}{}", text.empty() ? "" : ",", value);
+        return text;
+    };
+    app.add_option("--scenes", report.scenes,
+                   "Scenes, comma-separated (built-in names, listed by deepgi --help, or glTF "
+                   "files)")
+        ->delimiter(',')
+        ->default_str(listed(report.scenes));
+    app.add_option("--taps", report.taps, "Tap counts, comma-separated")
+        ->delimiter(',')
+        ->default_str(listed(report.taps));
+    app.add_option("--patterns", report.patterns,
+                   "Tap patterns, comma-separated: optimal, tau1, golden, m2, m4, m8")
+        ->delimiter(',')
+        ->default_str(listed(report.patterns));
+    app.add_option("--layers", report.layers, "G-buffer layer counts, comma-separated (1, 2)")
+        ->delimiter(',')
+        ->default_str(listed(report.layers));
     std::vector<std::string> ao_methods;
     app.add_option("--ao-methods", ao_methods,
-                   fmt::format("Deep SAO estimators ({}); the first compares the patterns "
-                               "(default: solid-angle,published,march)",
+                   fmt::format("Deep SAO estimators, comma-separated ({}); the first compares "
+                               "the patterns",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
-        ->delimiter(',');
-    app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT (guard band added)");
+        ->delimiter(',')
+        ->default_str("solid-angle,published,march");
+    app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT in pixels (guard band added)")
+        ->default_str(options.size + " pixels");
     app.add_option("--rays", report.rays,
                    "Reference rays per pixel; 0: as many as `deepgi reference` traces for its "
-                   "standard-error targets");
-    app.add_option("--output", options.output, "Directory for the report");
+                   "standard-error targets")
+        ->default_str(fmt::format("{} rays", report.rays));
+    app.add_option("--output", options.output, "Directory for the report")
+        ->default_str("none; report needs one");
     app.add_option("--converged-taps", report.converged_taps,
-                   "Taps of the converged screen-space result");
-    app.add_option("--warmup", report.warmup, "Untimed frames before the timed ones");
+                   "Taps of the converged screen-space result")
+        ->default_str(fmt::format("{} taps", report.converged_taps));
+    app.add_option("--warmup", report.warmup, "Untimed frames before the timed ones")
+        ->default_str(fmt::format("{} frame", report.warmup));
     app.add_option("--frames", report.frames,
                    "Timed frames (the median is reported); the accumulated errors are read after "
-                   "a whole rotation cycle of static frames either way");
-    app.add_option("--threads", report.threads, "Reference threads (0: all)");
+                   "a whole rotation cycle of static frames either way")
+        ->default_str(fmt::format("{} frames", report.frames));
+    app.add_option("--threads", report.threads, "Reference threads (0: all hardware threads)")
+        ->default_str("0, all hardware threads");
     app.add_option("--seed", report.seed, "Reference random seed");
     app.add_option("--image-taps", report.image_taps,
-                   "Tap count of the per-scene truth/estimate images (nearest in --taps)");
-    app.add_flag("!--no-stability", report.stability,
+                   "Tap count of the per-scene truth/estimate images (nearest in --taps)")
+        ->default_str(fmt::format("{} taps", report.image_taps));
+    app.add_flag("--no-stability", options.no_stability,
                  "Skip the numerical hard cases (stability.csv)");
     app.add_option("--float-max-n", report.float_max_n,
-                   "Exact against double tau search for n = 1..N (0: skip)");
-    app.add_flag("!--no-plots", options.plots, "Skip the matplotlib figures and summary.md");
+                   "Exact against double tau search for n = 1..N (0: skip)")
+        ->default_str(fmt::format("n = {}", report.float_max_n));
+    app.add_flag("--no-plots", options.no_plots, "Skip the matplotlib figures and summary.md");
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
-    app.add_option("--plot-script", options.plot_script, "scripts/plot_report.py");
+    app.add_option("--plot-script", options.plot_script,
+                   "The plotting script (scripts/plot_report.py of the source tree)");
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
+    report.stability = !options.no_stability;
+    options.plots = !options.no_plots;
     return run_reporting_errors("deepgi report", [&] {
         if (!ao_methods.empty()) {
             report.ao_methods.clear();

@@ -50,12 +50,13 @@ void add_blur_command(CLI::App& app) {
         "blur", "Write the GLSL header with the normalised Gaussian weights of the blur");
     command->add_option("--radius", args->radius, "Kernel radius in pixels (taps -R..R), 0 to 1024")
         ->required();
-    command->add_option("--sigma", args->sigma,
-                        "Standard deviation in pixels (default: radius / 2)");
+    command->add_option("--sigma", args->sigma, "Standard deviation of the Gaussian, in pixels")
+        ->default_str("radius / 2 pixels");
     command
         ->add_option("--out", args->out,
                      "Write to this file (atomically) instead of standard output ('-')")
-        ->check(non_empty_path);
+        ->check(non_empty_path)
+        ->default_str("standard output");
     command->callback([args] { run_blur(*args); });
 }
 

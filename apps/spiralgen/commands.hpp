@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "spiral/published.hpp"
 
 namespace spiralgen {
 
@@ -24,6 +27,11 @@ inline const CLI::Validator non_empty_path(
 // Rejects a turn denominator below 1, or one for which 4 n^2 m (n = max_n)
 // or n m would overflow the optimizer's exact arithmetic, naming the limit.
 void check_denominator(std::int64_t denominator, int max_n);
+
+// The --compare-published report: a Markdown page (source, summary, one row
+// per n) or, with csv, one row per n and no prose.
+std::string format_published_comparison(const std::vector<spiral::PublishedComparison>& rows,
+                                        bool csv);
 
 void add_table_command(CLI::App& app);
 void add_discrepancy_command(CLI::App& app);

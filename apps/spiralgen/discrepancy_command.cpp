@@ -204,11 +204,16 @@ void add_discrepancy_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "discrepancy", "Exact annular-sector discrepancy of one spiral, and its worst sector");
     command->add_option("--n", args->n, "Tap count")->required();
-    command->add_option("--tau", args->tau, "Number of spiral turns (an integer)");
-    command->add_option("--turns", args->turns,
-                        "Real number of turns in (0, n], or 'golden' for the golden-angle "
-                        "spiral (tau = n (2 - phi)); evaluated through a rational "
-                        "approximation with a stated error bound");
+    command
+        ->add_option("--tau", args->tau,
+                     "Number of spiral turns (an integer); give --tau or --turns")
+        ->default_str("none");
+    command
+        ->add_option("--turns", args->turns,
+                     "Real number of turns in (0, n], or 'golden' for the golden-angle "
+                     "spiral (tau = n (2 - phi)); evaluated through a rational "
+                     "approximation with a stated error bound")
+        ->default_str("none");
     command->add_option("--format", args->format, "Output format: text or json")
         ->capture_default_str();
     command->callback([args] { run_discrepancy(*args); });

@@ -64,17 +64,20 @@ void add_header_command(CLI::App& app) {
         ->add_option("--taps", args->taps,
                      fmt::format("Number of taps, 1 to {}", spiral::codegen::kMaxGatherTaps))
         ->required();
-    command->add_option("--tau", args->tau,
-                        "Number of spiral turns, overriding the optimum (the header then says "
-                        "how much worse it is)");
+    command
+        ->add_option("--tau", args->tau,
+                     "Number of spiral turns, overriding the optimum (the header then says "
+                     "how much worse it is)")
+        ->default_str("the optimum");
     command
         ->add_option("--out", args->out,
                      "Write to this file (atomically) instead of standard output ('-')")
-        ->check(non_empty_path);
+        ->check(non_empty_path)
+        ->default_str("standard output");
     command
         ->add_option("--denominator", args->denominator,
                      "Fractional turns tau = p / M: search p (and read --tau as p)")
-        ->capture_default_str();
+        ->default_str("1, integer turns");
     command->callback([args] { run_header(*args); });
 }
 

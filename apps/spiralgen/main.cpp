@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
+#include "help_formatter.hpp"
 
 namespace {
 
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
         "spiralgen: optimal spiral sample patterns and the shader headers that carry them"};
     app.name("spiralgen");
     app.require_subcommand(1);
+    // Before the subcommands: they inherit the formatter when added.
+    spiral_apps::use_help_formatter(app);
     spiralgen::add_table_command(app);
     spiralgen::add_discrepancy_command(app);
     spiralgen::add_header_command(app);

@@ -21,15 +21,39 @@ struct TableArgs {
     std::string out;
     int jobs = 0;
     std::int64_t denominator = 1;
+    bool compare_published = false;
 };
 
 void draw_progress(int done, int total) {
     constexpr int kWidth = 40;
     const int filled = done * kWidth / total;
-    fmt::print(stderr, "\r[{}{}] {}/{}", std::string(static_cast<std::size_t>(filled), '#'),
+    fmt::print(stderr, "\rspiralgen table: tap counts searched [{}{}] {}/{}",
+               std::string(static_cast<std::size_t>(filled), '#'),
                std::string(static_cast<std::size_t>(kWidth - filled), ' '), done, total);
     if (done == total) fmt::print(stderr, "\n");
     std::fflush(stderr);
+}
+
+// The published table against the optimum (docs/optimizer.md, "The published
+// table").
+void run_compare_published(const TableArgs& args, const CLI::App& command) {
+    for (const char* name : {"--min-n", "--max-n", "--denominator"})
+        if (command.count(name) > 0)
+            throw UsageError(fmt::format(
+                "{} does not apply with --compare-published (it covers the published n = 1..{})",
+                name, spiral::published_turns().size()));
+    if (args.format != "md" && args.format != "csv")
+        throw UsageError(
+            fmt::format("--compare-published writes md or csv, not --format '{}'", args.format));
+    if (args.jobs < 0)
+        throw UsageError(
+            fmt::format("--jobs {} is negative (0 means all hardware threads)", args.jobs));
+    const std::string text =
+        format_published_comparison(spiral::compare_published(args.jobs), args.format == "csv");
+    if (args.out.empty())
+        spiral::codegen::write_stdout(text);
+    else
+        spiral::codegen::write_file_atomically(args.out, text);
 }
 
 void run_table(const TableArgs& args) {
@@ -75,21 +99,29 @@ void add_table_command(CLI::App& app) {
     auto args = std::make_shared<TableArgs>();
     CLI::App* command =
         app.add_subcommand("table", "Tabulate the optimal spiral turns tau for each tap count n");
-    command->add_option("--min-n", args->min_n, "Smallest tap count")->capture_default_str();
-    command->add_option("--max-n", args->max_n, "Largest tap count")->capture_default_str();
+    command->add_option("--min-n", args->min_n, "Smallest tap count n")->default_str("n = 1");
+    command->add_option("--max-n", args->max_n, "Largest tap count n")->default_str("n = 99");
     command->add_option("--format", args->format, "Output format: cpp, glsl, json, csv or md")
         ->capture_default_str();
     command
         ->add_option("--out", args->out,
                      "Write to this file (atomically) instead of standard output ('-')")
-        ->check(non_empty_path);
-    command->add_option("--jobs", args->jobs,
-                        "Worker threads; 0 (the default) uses all hardware threads");
-    command
-        ->add_option("--denominator", args->denominator,
-                     "Search fractional turns tau = p / M (default 1: integer tau)")
-        ->capture_default_str();
-    command->callback([args] { run_table(*args); });
+        ->check(non_empty_path)
+        ->default_str("standard output");
+    command->add_option("--jobs", args->jobs, "Worker threads (0: all hardware threads)")
+        ->default_str("0, all hardware threads");
+    command->add_option("--denominator", args->denominator, "Search fractional turns tau = p / M")
+        ->default_str("1, integer turns");
+    command->add_flag("--compare-published", args->compare_published,
+                      "Compare the deep G-buffer paper's published tau table (n = 1..98) with the "
+                      "exact optimum: per n the published tau, its exact D and a verdict (ties, "
+                      "indexed one off, worse); md or csv");
+    command->callback([args, command] {
+        if (args->compare_published)
+            run_compare_published(*args, *command);
+        else
+            run_table(*args);
+    });
 }
 
 }  // namespace spiralgen

@@ -121,7 +121,8 @@ std::string format_cpp(const std::vector<SearchResult>& results, const Provenanc
     std::string out = detail::banner(provenance, "Spiral turns table (C++)", inputs_text(results));
     out += fmt::format(
         "//\n"
-        "// kSpiralTurns[n] is the number of spiral turns for an n-tap pattern.\n"
+        "// Indexed by the tap count itself, not n - 1: kSpiralTurns[n] is the number of\n"
+        "// spiral turns for an n-tap pattern, e.g. int tau = kSpiralTurns[9];\n"
         "// Entry 0 and every n outside the computed set hold 0, never a valid tau.\n"
         "{}"
         "#pragma once\n"
@@ -150,7 +151,8 @@ std::string format_glsl(const std::vector<SearchResult>& results, const Provenan
     std::string out = detail::banner(provenance, "Spiral turns table (GLSL)", inputs_text(results));
     out += fmt::format(
         "//\n"
-        "// SPIRAL_TURNS[n] is the number of spiral turns for an n-tap pattern.\n"
+        "// Indexed by the tap count itself, not n - 1: SPIRAL_TURNS[n] is the number of\n"
+        "// spiral turns for an n-tap pattern, e.g. int tau = SPIRAL_TURNS[NUM_TAPS];\n"
         "// Entry 0 and every n outside the computed set hold 0, never a valid tau.\n"
         "{}"
         "#ifndef SPIRAL_TURNS_TABLE_GLSL\n"

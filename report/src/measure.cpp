@@ -287,8 +287,10 @@ Row make_row(Row row, const Measured& m) {
 // against the exact one, each written or, when skipped, removed so that a
 // table from an earlier run into the same folder is not read as this run's.
 void measure_side_tables(const ReportOptions& options, ReportResult& result,
-                         const std::function<void(const std::string&)>& log) {
+                         const std::function<void(const std::string&)>& log,
+                         const std::function<void(const std::string&)>& step) {
     if (options.stability) {
+        step("stability cases");
         const auto stability_start = std::chrono::steady_clock::now();
         result.stability =
             run_stability_cases(hard_cases::Parameters{}, options.ao_methods, options.log);
@@ -303,6 +305,7 @@ void measure_side_tables(const ReportOptions& options, ReportResult& result,
         fs::remove(options.output / "stability.csv");
     }
     if (options.float_max_n > 0) {
+        step("float against exact search");
         const auto float_start = std::chrono::steady_clock::now();
         result.float_choices =
             spiral_float::compare_float_search(options.float_max_n, options.threads);
@@ -368,7 +371,16 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.image_pattern = image_pattern;
     result.info.image_taps = image_taps;
 
+    // Progress: one step per scene, then the side tables that run.
+    const int steps = int(options.scenes.size()) + (options.stability ? 1 : 0) +
+                      (options.float_max_n > 0 ? 1 : 0);
+    int steps_done = 0;
+    auto step = [&](const std::string& name) {
+        if (options.progress) options.progress(steps_done, steps, name);
+        ++steps_done;
+    };
     for (const std::string& scene_name : options.scenes) {
+        step("scene " + scene_name);
         const Scene scene = load_scene(scene_name);
         const Camera& camera = scene.default_camera;
 
@@ -541,7 +553,7 @@ ReportResult run_report(const ReportOptions& options) {
         }
     }
 
-    measure_side_tables(options, result, log);
+    measure_side_tables(options, result, log, step);
 
     result.info.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

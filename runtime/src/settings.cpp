@@ -170,7 +170,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 22> numeric_table = {{
+const std::array<NumericSetting, 23> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -219,6 +219,17 @@ const std::array<NumericSetting, 22> numeric_table = {{
      .logarithmic = true,
      .effect = reallocate,
      DEEPGI_INT_FIELD(shadow_map_size)},
+    {.name = "antialias",
+     .label = "anti-aliasing",
+     .group = "frame",
+     .owner = "antialias",
+     .help = "Anti-aliasing of the final image after the tonemap, FXAA-like (1: on, 0: off)",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .slider_min = 0.0f,
+     .slider_max = 1.0f,
+     DEEPGI_INT_FIELD(antialias)},
     {.name = "ao-radius",
      .label = "radius (m)",
      .group = "ao",

@@ -37,6 +37,7 @@ static_assert(sizeof(RadiosityGatherParameters) == 32 &&
               offsetof(RadiosityGatherParameters, layers) == 16);
 static_assert(sizeof(RadiosityPrepareParameters) == 16);
 static_assert(sizeof(BlurParameters) == 16);
+static_assert(sizeof(AntialiasParameters) == 16);
 }  // namespace deepgi::shader_shared
 
 namespace deepgi {

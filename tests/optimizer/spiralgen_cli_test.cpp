@@ -3,10 +3,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "help_check.hpp"
 #include "process.hpp"
 #include "spiral/optimizer.hpp"
+#include "spiral/published.hpp"
 
 using spiral::test::count_lines;
 using spiral::test::run_command;
@@ -147,6 +151,23 @@ TEST_CASE("spiralgen: --help works on every subcommand", "[cli]") {
     CHECK(result.out.find("--format") != std::string::npos);
 }
 
+TEST_CASE("spiralgen: every option's help shows its default, without parser notation",
+          "[cli][help]") {
+    const std::string command =
+        GENERATE(as<std::string>{}, "table", "discrepancy", "header", "blur");
+    const auto result = spiralgen(command + " --help");
+    REQUIRE(result.status == 0);
+    INFO(command << " --help");
+    CHECK(spiral::test::help_entries(result.out).size() >= 4);
+    for (const auto& bad : spiral::test::undocumented_options(result.out)) {
+        INFO(bad);
+        CHECK(false);
+    }
+    const auto top = spiralgen("--help");
+    for (const char* name : {"table", "discrepancy", "header", "blur"})
+        CHECK(top.out.find(name) != std::string::npos);
+}
+
 TEST_CASE("spiralgen: --out is written atomically and a failing run leaves no file",
           "[cli][atomic]") {
     const auto dir = spiral::test::make_scratch_dir("spiralgen-cli");
@@ -176,4 +197,77 @@ TEST_CASE("spiralgen: --out is written atomically and a failing run leaves no fi
     for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++entries;
     CHECK(entries <= 1);
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// The smallest K over every integer tau in [1, n], by the exact evaluator
+// alone (no search, no bounds).
+std::int64_t minimum_by_evaluator(int n) {
+    std::int64_t best = -1;
+    for (int tau = 1; tau <= n; ++tau) {
+        const std::int64_t k = spiral::discrepancy(n, tau).scaled;
+        if (best < 0 || k < best) best = k;
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("spiralgen: --compare-published verdicts agree with the exact evaluator",
+          "[cli][table][published]") {
+    const auto result = spiralgen("table --compare-published --format csv");
+    REQUIRE(result.status == 0);
+    CHECK(result.err.empty());
+    const auto published = spiral::published_turns();
+    REQUIRE(count_lines(result.out) == int(published.size()) + 1);
+    std::vector<std::int64_t> minimum(published.size() + 2, -1);
+    for (std::size_t n = 1; n < minimum.size(); ++n) minimum[n] = minimum_by_evaluator(int(n));
+
+    std::istringstream lines(result.out);
+    std::string line;
+    std::getline(lines, line);  // header
+    int ties = 0;
+    for (int n = 1; n <= int(published.size()); ++n) {
+        REQUIRE(std::getline(lines, line));
+        const int tau = published[std::size_t(n - 1)];
+        const std::int64_t k = spiral::discrepancy(n, tau).scaled;
+        std::string verdict = "worse";
+        std::string optimal_for = "0";
+        if (k == minimum[std::size_t(n)]) {
+            verdict = "ties";
+            optimal_for = "0";
+        } else {
+            for (int neighbour : {n - 1, n + 1}) {
+                if (neighbour >= 1 &&
+                    spiral::discrepancy(neighbour, tau).scaled == minimum[std::size_t(neighbour)]) {
+                    verdict = "one-off";
+                    optimal_for = std::to_string(neighbour);
+                    break;
+                }
+            }
+        }
+        ties += verdict == "ties";
+        std::ostringstream start, end;
+        start << n << ',' << tau << ',' << k << ',';
+        end << ',' << minimum[std::size_t(n)] << ',' << 4 * n * n << ',' << verdict << ','
+            << optimal_for;
+        INFO("n = " << n << ": " << line);
+        CHECK(line.rfind(start.str(), 0) == 0);
+        CHECK(line.find(end.str()) != std::string::npos);
+    }
+    // The paper's own example: tau = 7 for 9 taps is a minimiser (docs/optimizer.md),
+    // but the published entry for n = 9 is 2, also a minimiser.
+    CHECK(published[8] == 2);
+    CHECK(ties > 0);
+
+    const auto md = spiralgen("table --compare-published");
+    REQUIRE(md.status == 0);
+    CHECK(md.out.find("Listing 3") != std::string::npos);
+    CHECK(md.out.find(std::to_string(ties) + " of " + std::to_string(published.size()) +
+                      " published values tie the optimum") != std::string::npos);
+
+    const auto refused = spiralgen("table --compare-published --max-n 40");
+    CHECK(refused.status == 2);
+    CHECK(refused.err.find("--max-n") != std::string::npos);
 }

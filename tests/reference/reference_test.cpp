@@ -4,6 +4,8 @@
 #include "deepgi/reference.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <fstream>
 #include <glm/gtc/constants.hpp>
 
 #include <sys/wait.h>
@@ -321,6 +323,22 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
           "reference-ao-standard-error.pfm", "reference-ao-rays.pfm",
           "reference-irradiance-standard-error.pfm", "reference-irradiance-rays.pfm"})
         REQUIRE(fs::exists(directory / name));
+    // A PNG preview beside each PFM, and nothing else.
+    int pfm_count = 0;
+    for (const auto& entry : fs::directory_iterator(directory)) {
+        const fs::path path = entry.path();
+        INFO(path.filename().string());
+        REQUIRE((path.extension() == ".pfm" || path.extension() == ".png"));
+        if (path.extension() != ".pfm") continue;
+        ++pfm_count;
+        const fs::path preview = fs::path(path).replace_extension(".png");
+        REQUIRE(fs::exists(preview));
+        std::ifstream png(preview, std::ios::binary);
+        std::string signature(8, '\0');
+        png.read(signature.data(), 8);
+        CHECK(signature == "\x89PNG\r\n\x1a\n");
+    }
+    CHECK(pfm_count == 11);
     fs::remove_all(directory);
 
     for (const char* arguments :

@@ -3,11 +3,13 @@ add_executable(deepgi_runtime_tests
   ${CMAKE_CURRENT_LIST_DIR}/gbuffer_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/outputs_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shader_loader_test.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/help_test.cpp)
 target_link_libraries(deepgi_runtime_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt)
 # runtime/src for the pass list (pass.hpp), which the shader loader test walks.
 target_include_directories(deepgi_runtime_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests
-                           ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
+                           ${PROJECT_SOURCE_DIR}/tests/support ${PROJECT_SOURCE_DIR}/runtime/src
+                           ${PROJECT_SOURCE_DIR}/shaders)
 target_compile_definitions(deepgi_runtime_tests PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
 add_dependencies(deepgi_runtime_tests deepgi)
 catch_discover_tests(deepgi_runtime_tests PROPERTIES LABELS runtime TIMEOUT 300)

@@ -7,9 +7,11 @@
 #include "../support/gltf_support.hpp"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -637,4 +639,32 @@ TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read; bad values r
     const std::string source = R"({"source":0})";
     missing.replace(missing.find(source), source.size(), R"({"source":0,"sampler":3})");
     CHECK(contains(refusal(missing), "texture 0: sampler index out of range"));
+}
+
+TEST_CASE("gltf loader: a file without a camera gets a three-quarter view fitted to its bounds",
+          "[runtime][gltf]") {
+    const deepgi::Scene scene = load(five_vertex_gltf({5}));
+    const deepgi::Camera& camera = scene.default_camera;
+    const glm::vec3 forward = deepgi::camera_forward(camera);
+    // Neither head-on nor level: the view comes from off every axis.
+    const float down = glm::degrees(std::asin(-forward.y));
+    const float round = glm::degrees(std::atan2(std::abs(forward.x), std::abs(forward.z)));
+    CHECK(down >= 20.0f);
+    CHECK(down <= 45.0f);
+    CHECK(round >= 25.0f);
+    CHECK(round <= 65.0f);
+    // Every corner of the bounds lies in front of the camera and inside a
+    // 16:9 frame, by a textbook perspective projection of the camera's view.
+    const glm::mat4 projection = glm::perspective(camera.vertical_fov, 16.0f / 9.0f, 1e-3f, 1e3f);
+    const glm::mat4 view = glm::lookAt(camera.position, camera.position + forward, {0, 1, 0});
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? scene.bounds.max.x : scene.bounds.min.x,
+                          (corner & 2) ? scene.bounds.max.y : scene.bounds.min.y,
+                          (corner & 4) ? scene.bounds.max.z : scene.bounds.min.z);
+        const glm::vec4 clip = projection * view * glm::vec4(p, 1.0f);
+        INFO("corner " << corner);
+        REQUIRE(clip.w > 0.0f);
+        CHECK(std::abs(clip.x / clip.w) <= 1.0f);
+        CHECK(std::abs(clip.y / clip.w) <= 1.0f);
+    }
 }

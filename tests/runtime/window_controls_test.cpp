@@ -249,7 +249,7 @@ TEST_CASE(
     const std::set<std::string_view> owners = {
         "frame",         "shadow",  "gbuffer",     "backface_depth",    "direct_light",
         "depth_pyramid", "sao",     "ao_temporal", "radiosity_prepare", "radiosity",
-        "blur",          "compose", "tonemap"};
+        "blur",          "compose", "tonemap",     "antialias"};
     const RenderSettings defaults;
     for (const NumericSetting& row : numeric_settings()) {
         INFO(row.name);

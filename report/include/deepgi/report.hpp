@@ -193,6 +193,10 @@ struct ReportOptions {
     std::filesystem::path output;
     // One line per finished step (for the log); may be empty.
     std::function<void(const std::string&)> log;
+    // Called as each step starts (a scene, the stability cases, the float
+    // comparison) with the steps done, the steps in all and the step's name;
+    // may be empty.
+    std::function<void(int done, int total, const std::string& step)> progress;
 };
 
 // Throws deepgi::InputError naming the first invalid option.

@@ -208,6 +208,7 @@ struct RenderSettings {
     bool environment = true;
     DebugView view = DebugView::final_image;
     int shadow_map_size = 2048;
+    int antialias = 1;  // 1: the anti-aliasing pass filters the final image; 0: off
     TimingMode timing = TimingMode::automatic;
     // Installs a KHR_debug callback: a GL error raised inside a pass becomes a
     // GraphicsError naming the pass (costs a synchronous debug context).

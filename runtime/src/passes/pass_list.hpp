@@ -18,3 +18,4 @@ DEEPGI_PASS(blur)  // AO and radiosity E share one bilateral blur (bilateral_blu
 DEEPGI_PASS(compose)
 DEEPGI_PASS(tonemap)     // final image only
 DEEPGI_PASS(debug_view)  // any other view
+DEEPGI_PASS(antialias)   // final image only, after the tonemap

@@ -18,6 +18,21 @@ namespace deepgi {
 // computes it on resize, and the renderer again when the light is edited.
 ShadowProjection shadow_projection(const Scene& scene, int size);
 
+// The anti-aliasing filter on its own (the pass copies the display aside and
+// runs it back into the display; tests run it on hand-made images).
+struct Antialias {
+    gl::Program program;
+    shader_shared::AntialiasParameters parameters{.edge_threshold = 0.125f,
+                                                  .edge_threshold_min = 0.0312f,
+                                                  .subpixel = 0.75f,
+                                                  .unused0 = 0.0f};
+    ParameterBlock<shader_shared::AntialiasParameters> block;
+};
+Antialias create_antialias(const ShaderLoader& loader);
+// Filters `source` (an RGBA8 texture of width x height) into the framebuffer.
+void run_antialias(Antialias& antialias, GLuint source, GLuint target_framebuffer, int width,
+                   int height, GLuint empty_vertex_array);
+
 // The separable bilateral blur as a reusable building block: the blur pass
 // uses it, and so will any later pass that smooths a screen-space signal.
 // Tolerances are fractions of the centre pixel's depth.

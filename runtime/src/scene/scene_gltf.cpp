@@ -905,12 +905,15 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
     scene.bounds = compute_bounds(scene.vertices);
     const glm::vec3 centre = (scene.bounds.min + scene.bounds.max) * 0.5f;
     const float radius = std::max(glm::length(scene.bounds.max - scene.bounds.min) * 0.5f, 1e-3f);
-    // Default view: from +z, a little above, far enough to see the bounding sphere.
+    // Default view: three-quarter, from the front right and above (35 degrees
+    // round, 30 down), so a box shows three faces instead of a flat card, far
+    // enough to see the bounding sphere whole with a tenth to spare.
     Camera camera;
     camera.vertical_fov = glm::radians(50.0f);
     camera.near_plane = std::max(radius * 1e-3f, 1e-4f);
-    const float distance = radius / std::sin(camera.vertical_fov * 0.5f);
-    camera.pitch = glm::radians(-15.0f);
+    const float distance = 1.1f * radius / std::sin(camera.vertical_fov * 0.5f);
+    camera.yaw = glm::radians(-35.0f);
+    camera.pitch = glm::radians(-30.0f);
     camera.position = centre - camera_forward(camera) * distance;
     scene.default_camera = camera;
     if (!scene.file_cameras.empty()) {
