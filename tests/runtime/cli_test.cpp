@@ -274,6 +274,11 @@ const std::vector<DumpRange>& dump_ranges() {
              return in_range(std::min({p[0], p[1], p[2]}), 0, 1) +
                     in_range(std::max({p[0], p[1], p[2]}), 0, 1);
          }},
+        {"antialias-colour", 3,
+         [](const float* p) {
+             return in_range(std::min({p[0], p[1], p[2]}), 0, 1) +
+                    in_range(std::max({p[0], p[1], p[2]}), 0, 1);
+         }},
     };
     return ranges;
 }
