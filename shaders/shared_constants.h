@@ -37,7 +37,6 @@
 #define DEEPGI_UNIT_RADIOSITY_HISTORY_KEY_LAYER1 20  // the same for layer 1 (prepare pass)
 #define DEEPGI_UNIT_RADIOSITY_RADIANCE 21  // RGBA16F array with MIPs: prepared outgoing radiance B per layer
 #define DEEPGI_UNIT_RADIOSITY_NORMAL 22    // RG16F array with MIPs: prepared octahedral normal per layer
-#define DEEPGI_UNIT_HISTORY_PARTIAL 23     // last frame's mean of the current rotation cycle (temporal filters)
 #define DEEPGI_UNIT_EMISSIVE 24            // a material's emissive texture (sRGB)
 #define DEEPGI_UNIT_BLUR_SECOND_SOURCE 25  // the bilateral blur's second signal, same weights
 #define DEEPGI_UNIT_BLUR_KEY 26            // RGBA32F: layer-0 normal (xyz) and linear depth (w)
@@ -108,8 +107,10 @@ struct FrameConstants {
 
   int light_kind;  // DEEPGI_LIGHT_*
   int debug_view;  // DEEPGI_VIEW_*
-  int temporal_phase;    // frames since history was invalidated, modulo DEEPGI_TEMPORAL_CYCLE
-  float temporal_angle;  // rad, this frame's extra rotation of the gather patterns (0 at phase 0)
+  int temporal_frame;    // frames since history was invalidated (0 on the first)
+  float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
+
+  vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
 };
 
 #endif

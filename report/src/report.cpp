@@ -28,15 +28,16 @@ namespace {
 
 // A temporal AO pass, when the build has one, publishes its accumulated
 // visibility under this name; the report then fills the ref_temporal_*
-// columns after a whole rotation cycle (kAccumulatedFrames).
+// columns after kAccumulatedFrames still frames.
 constexpr const char* kTemporalAoOutput = "ao-temporal";
 // The temporally filtered layer-0 irradiance (radiosity pass).
 constexpr const char* kTemporalIrradianceOutput = "radiosity-irradiance-layer0";
 
 // Static frames after a cut until the accumulated columns are read: the
-// temporal filters then hold the mean of every rotation of the cycle
-// (frame.cpp), what a still camera converges to.
-constexpr int kAccumulatedFrames = 1 + DEEPGI_TEMPORAL_CYCLE;
+// temporal filters then hold the running mean of that many frames, each
+// with a new rotation (frame.cpp), on the way to what a still camera
+// converges to. Nine, as when the rotation ran through a cycle of eight.
+constexpr int kAccumulatedFrames = 9;
 
 // The ray-traced one-bounce irradiance that the radiosity gather estimates
 // (viewport layout as ambient_visibility); empty when it was not traced.

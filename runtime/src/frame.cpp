@@ -18,8 +18,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace deepgi {
+
+namespace shader_shared {
+// The shader's own sequence source (shaders/temporal_sequence.h).
+using uint = std::uint32_t;
+#define DEEPGI_SHARED_FUNCTION inline
+#include "temporal_sequence.h"
+#undef DEEPGI_SHARED_FUNCTION
+}  // namespace shader_shared
+using shader_shared::temporal_sequence_u_fixed;
+using shader_shared::temporal_sequence_v_fixed;
 
 namespace fs = std::filesystem;
 using shader_shared::FrameConstants;
@@ -78,7 +89,7 @@ struct RendererState {
     PassTimer timer{true};
     std::optional<Camera> last_camera;   // converts dumped depth to metres
     std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
-    int temporal_frame = 0;  // frames since history was invalidated, modulo the rotation cycle
+    std::uint32_t temporal_frame = 0;    // frames since history was invalidated (wraps at 2^32)
 
     RendererState(const Scene& source, const RenderSettings& render_settings,
                   const ShaderLoader& shader_loader)
@@ -130,17 +141,14 @@ void resize_passes(RendererState& state) {
     }
 }
 
-// This frame's extra rotation of the gather patterns. The angles cycle through
-// DEEPGI_TEMPORAL_CYCLE evenly spaced values, taken in bit-reversed order so
-// that every prefix of a cycle is spread around the circle too. Because the
-// sequence repeats, a static camera sees the same DEEPGI_TEMPORAL_CYCLE raw
-// results again and again, and a filter that averages whole cycles stops
-// changing (temporal_accumulation.glsl); an endless sequence (golden ratio)
-// would keep feeding it new noise.
-float temporal_angle(int phase) {
-    static_assert(DEEPGI_TEMPORAL_CYCLE == 8, "the bit reversal below is for 3 bits");
-    const int reversed = ((phase & 1) << 2) | (phase & 2) | ((phase >> 2) & 1);
-    return float(reversed) * (6.2831853f / float(DEEPGI_TEMPORAL_CYCLE));
+// This frame's point of the temporal sequence (shaders/temporal_sequence.h),
+// k frames after history was invalidated: (0, 0) on the first frame, then a
+// low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
+// running mean keeps receiving new samples of the integral.
+glm::vec2 temporal_sample(std::uint32_t k) {
+    constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float
+    return {float(temporal_sequence_u_fixed(k) >> 8u) * to_unit,
+            float(temporal_sequence_v_fixed(k) >> 8u) * to_unit};
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
@@ -192,8 +200,10 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
                            : light.kind == LightKind::spot      ? DEEPGI_LIGHT_SPOT
                                                                 : DEEPGI_LIGHT_POINT;
     constants.debug_view = static_cast<int>(settings.view);
-    constants.temporal_phase = state.temporal_frame % DEEPGI_TEMPORAL_CYCLE;
-    constants.temporal_angle = temporal_angle(constants.temporal_phase);
+    const glm::vec2 sample = temporal_sample(state.temporal_frame);
+    constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
+    constants.temporal_angle = sample.x * 6.2831853f;
+    constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);
     return constants;
 }
 
@@ -237,7 +247,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     frame.end_frame();
     state.last_camera = camera;
-    state.temporal_frame = (state.temporal_frame + 1) % DEEPGI_TEMPORAL_CYCLE;
+    ++state.temporal_frame;
 }
 
 // Every enabled pass's outputs, in pass order.

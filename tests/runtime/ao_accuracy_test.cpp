@@ -105,8 +105,8 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
 }
 
 // Frames a static camera renders for the accumulated figures: the first
-// frame and a whole rotation cycle after it (frame.cpp).
-constexpr int accumulated_frames = 1 + DEEPGI_TEMPORAL_CYCLE;
+// frame and eight after it, each with a new rotation (frame.cpp).
+constexpr int accumulated_frames = 9;
 
 struct StageErrors {
     Error one_layer, two_layers;
