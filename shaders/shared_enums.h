@@ -1,4 +1,4 @@
-// The layer count, the temporal rotation cycle, the march's ray and step
+// The layer count, the temporal filters' cap, the march's ray and step
 // counts and the values of the renderer's enums, shared by GLSL and C++: the C++ enums in
 // runtime/include/deepgi/settings.hpp take their values from these, so the
 // two sides cannot disagree. Only #define lines, so it can be included

@@ -105,7 +105,7 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--warmup", report.warmup, "Untimed frames before the timed ones");
     app.add_option("--frames", report.frames,
                    "Timed frames (the median is reported); the accumulated errors are read after "
-                   "a whole rotation cycle of static frames either way");
+                   "9 static frames either way");
     app.add_option("--threads", report.threads, "Reference threads (0: all)");
     app.add_option("--seed", report.seed, "Reference random seed");
     app.add_option("--image-taps", report.image_taps,

@@ -295,8 +295,8 @@ const std::array<NumericSetting, 22> numeric_table = {{
      .label = "temporal alpha",
      .group = "ao",
      .owner = "ao_temporal",
-     .help = "AO temporal filter's history weight across rotation cycles (0: raw SAO of each "
-             "frame)",
+     .help = "AO temporal filter's history weight where the point moves on screen; a still "
+             "point keeps the running mean of up to 256 frames (0: raw SAO of each frame)",
      .minimum = 0.0f,
      .maximum = 1.0f,
      .maximum_inclusive = false,
@@ -367,7 +367,8 @@ const std::array<NumericSetting, 22> numeric_table = {{
      .label = "temporal alpha",
      .group = "radiosity",
      .owner = "radiosity",
-     .help = "Deep radiosity: temporal filter's history weight (0: raw gather)",
+     .help = "Deep radiosity: temporal filter's history weight where the point moves on "
+             "screen; a still point keeps the running mean of up to 256 frames (0: raw gather)",
      .minimum = 0.0f,
      .maximum = 1.0f,
      .maximum_inclusive = false,

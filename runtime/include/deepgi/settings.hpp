@@ -152,8 +152,10 @@ struct AoSettings {
     // backface_depth pass). 0.1 to 1 m move warehouse's bias by less than
     // .001 (docs/deep-sao.md, "The march").
     float thickness = 0.2f;
-    // Temporal filter: weight of the history across whole rotation cycles
-    // (0: the raw SAO result of each frame); see docs/radiosity.md.
+    // Temporal filter: weight of the history where the point moves on
+    // screen; a still point keeps the running mean of up to
+    // DEEPGI_TEMPORAL_CAP frames (0: the raw SAO result of each frame); see
+    // docs/radiosity.md.
     float alpha = 0.85f;
     // false: compose takes the visibility as 1 (the passes still run, so the
     // AO debug views keep working); for showing what AO adds.
@@ -169,7 +171,7 @@ struct RadiositySettings {
     // the sample's area weight (area method) or alone (published method).
     float tap_clamp = 16.0f;
     float rho_prop = 0.5f;  // share of last frame's indirect light fed into the next gather
-    float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
+    float alpha = 0.85f;  // temporal filter: history weight where the point moves (0: raw gather)
     int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
     RadiosityMethod method = RadiosityMethod::area;
     // false: compose takes E and its confidence as 0, so the environment term
