@@ -78,7 +78,8 @@ const std::vector<PassFactory>& default_pass_list() {
 
 struct RendererState {
     Scene scene;
-    RenderSettings settings;
+    RenderSettings settings;  // as given: lengths may be auto_length
+    RenderSettings in_use;    // `auto` resolved for this scene: what the passes read
     ShaderLoader loader;
     SceneGpu scene_gpu;
     gl::VertexArray empty_vertex_array;
@@ -129,7 +130,7 @@ void throw_gl_errors(RendererState& state, std::string_view where) {
 // pass's render targets. Programs are untouched.
 void resize_passes(RendererState& state) {
     FrameResources& frame = state.frame;
-    frame.settings = &state.settings;
+    frame.settings = &state.in_use;
     frame.scene = &state.scene;
     frame.scene_gpu = &state.scene_gpu;
     frame.layout = frame_layout(state.settings);
@@ -153,7 +154,7 @@ glm::vec2 temporal_sample(std::uint32_t k) {
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
                                     const Camera& previous) {
-    const RenderSettings& settings = state.settings;
+    const RenderSettings& settings = state.in_use;
     const FrameLayout layout = frame_layout(settings);
     const KeyLight& light = state.scene.key_light;
     const ShadowProjection& shadow = state.frame.shadow;
@@ -231,7 +232,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     frame.begin_frame_textures();
     for (std::size_t i = 0; i < state.passes.size(); ++i) {
         Pass* pass = state.passes[i].get();
-        if (!pass->enabled(state.settings)) continue;
+        if (!pass->enabled(state.in_use)) continue;
         ScopedPass timed(state.timer, std::string(pass->name()));
         // check_pass_declarations() has made sure every read is written.
         const PassDeclaration& declaration = state.declarations[i];
@@ -254,7 +255,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
 std::vector<PassOutput> all_outputs(const RendererState& state) {
     std::vector<PassOutput> outputs;
     for (const auto& pass : state.passes) {
-        if (!pass->enabled(state.settings)) continue;
+        if (!pass->enabled(state.in_use)) continue;
         for (auto& output : pass->outputs(state.frame)) outputs.push_back(std::move(output));
     }
     return outputs;
@@ -270,6 +271,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     : state_(std::make_unique<RendererState>(scene, settings, loader)) {
     validate(settings);
     RendererState& state = *state_;
+    state.in_use = resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
     state.scene_gpu = upload_scene(state.scene);
     state.empty_vertex_array = gl::create_vertex_array();
     state.frame_constants = gl::create_buffer();
@@ -279,7 +281,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     install_gl_debug(state, settings.gl_debug);
     try {
         for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
-        state.declarations = check_pass_declarations(state.passes, state.settings);
+        state.declarations = check_pass_declarations(state.passes, state.in_use);
         resize_passes(state);
     } catch (...) {
         // No destructor runs for a half-built renderer; the callback must not
@@ -331,8 +333,11 @@ void Renderer::set_settings(const RenderSettings& settings) {
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).
-    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, settings);
+    const RenderSettings in_use =
+        resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
+    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, in_use);
     state.settings = settings;
+    state.in_use = in_use;
     state.declarations = std::move(declarations);
     if (reallocate) resize_passes(state);
     if (invalidate) state.frame.invalidate_history(reason);
@@ -341,6 +346,16 @@ void Renderer::set_settings(const RenderSettings& settings) {
 
 const RenderSettings& Renderer::settings() const {
     return state_->settings;
+}
+
+const RenderSettings& Renderer::settings_in_use() const {
+    return state_->in_use;
+}
+
+float scene_bounding_radius(const Scene& scene) {
+    const float radius = 0.5f * glm::length(scene.bounds.max - scene.bounds.min);
+    // An empty or degenerate scene still gets positive lengths.
+    return std::isfinite(radius) && radius > 0.0f ? radius : 1.0f;
 }
 
 void Renderer::set_key_light(const KeyLight& light) {
