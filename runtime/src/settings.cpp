@@ -168,7 +168,7 @@ constexpr float unlimited = std::numeric_limits<float>::infinity();
 // diagonal); docs/deepgi.md, "Scene scale", says how they were chosen.
 constexpr float kAoRadiusFraction = 0.1f;
 constexpr float kThicknessFraction = 0.04f;
-constexpr float kRadiosityRadiusFraction = 0.3f;
+constexpr float kRadiosityRadiusFraction = 0.6f;
 constexpr float kMinSeparationFraction = 0.1f;
 constexpr SettingEffect reallocate = SettingEffect::reallocate;
 constexpr SettingEffect drop_history = SettingEffect::drop_history;
