@@ -181,6 +181,11 @@ const std::map<std::string, double>& short_of_target() {
         {"march/atrium/open-blurred/first", 6.0},
         {"march/atrium/open-blurred/accumulated", 5.0},
         {"march/warehouse/open-blurred/accumulated", 3.0},
+        // Since the frames take points of the R2 sequence instead of a cycle
+        // of 8 (angle and step offset advancing together), 9 of warehouse's
+        // 21514 open pixels in open surroundings fall below 0.99 in the
+        // running mean of 9 frames, before the blur (1 after it, as before).
+        {"march/warehouse/open/accumulated", 11.0},
     };
     return bounds;
 }
