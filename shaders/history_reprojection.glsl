@@ -38,3 +38,11 @@ bool find_history(ivec2 pixel, int layer, vec3 camera_normal, sampler2DArray mot
   if (!(key.x > 0.0) || abs(key.x - expected_depth) > history_depth_tolerance * expected_depth) return false;
   return dot(decode_normal(key.yz), world_normal_from_camera(camera_normal)) >= history_normal_cosine;
 }
+
+// True where the point has not moved on screen since last frame (the motion
+// vector below 1/64 pixel): its history is the same point seen the same way,
+// so the temporal filters may average every frame (temporal_accumulation.glsl).
+bool history_still(ivec2 pixel, int layer, sampler2DArray motion_texture) {
+  vec2 motion = texelFetch(motion_texture, ivec3(pixel, layer), 0).xy;
+  return all(lessThanEqual(abs(motion), vec2(1.0 / 64.0)));
+}

@@ -88,8 +88,8 @@ void main() {
   vec3 normal = decode_normal(texelFetch(prepared_normal, ivec3(pixel, layer), 0).xy);
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
-  // The per-frame angle (frame.cpp) walks through a short cycle, which the
-  // temporal filter averages over.
+  // The per-frame angle (frame.cpp) follows a sequence that never repeats,
+  // which the temporal filter averages over.
   float phi = pixel_rotation_angle(uvec2(pixel)) + frame.temporal_angle;
   mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);

@@ -2,7 +2,8 @@
 // Temporal filter of deep radiosity (docs/design.md, section 5.9) for one layer: finds
 // last frame's E of this pixel's surface point with the G-buffer's motion
 // vectors, rejects it where depth or normal disagree
-// (history_reprojection.glsl), and accumulates whole rotation cycles
+// (history_reprojection.glsl), and accumulates a running mean where the
+// point is still and an exponential blend where it moves
 // (temporal_accumulation.glsl). A rejected pixel starts fresh from the raw
 // gather.
 #include "frame_constants.glsl"
@@ -16,15 +17,13 @@ layout(binding = 3) uniform sampler2DArray gbuffer_motion;
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 17) uniform sampler2D raw_irradiance;
 layout(binding = 15) uniform sampler2D history_irradiance;
-layout(binding = 23) uniform sampler2D history_partial;
 layout(binding = 19) uniform sampler2D history_key;
 
 layout(location = 4) uniform int layer;
 layout(location = 29) uniform float alpha;
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
-layout(location = 1) out vec4 out_partial;     // this cycle's running mean so far
-layout(location = 2) out vec4 out_key;         // history_reprojection.glsl
+layout(location = 1) out vec4 out_key;         // history_reprojection.glsl
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -32,7 +31,6 @@ void main() {
   vec2 depths = texelFetch(depth_pyramid, pixel, 0).rg;
   float depth = layer == 0 ? depths.r : depths.g;
   out_irradiance = raw;
-  out_partial = raw;
   out_key = vec4(0.0);
   if (depth <= 0.0) return;
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, layer), 0).xy);
@@ -40,12 +38,11 @@ void main() {
   vec4 key;
   Accumulation result;
   if (find_history(pixel, layer, normal, gbuffer_motion, history_key, texel, key)) {
-    result = accumulate(raw, texelFetch(history_irradiance, texel, 0), texelFetch(history_partial, texel, 0), key.w,
-                        alpha);
+    result = accumulate(raw, texelFetch(history_irradiance, texel, 0), key.w, alpha,
+                        history_still(pixel, layer, gbuffer_motion));
   } else {
-    result = accumulate(raw, raw, raw, 0.0, alpha);
+    result = accumulate(raw, raw, 0.0, alpha, false);
   }
   out_irradiance = result.mean;
-  out_partial = result.partial;
   out_key = history_key_for(depth, normal, result.count);
 }

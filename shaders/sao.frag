@@ -123,8 +123,9 @@ float obscurance(vec3 v, vec3 normal, float radius_squared, float bias) {
 // Rays: Malley's method on the golden-angle (Vogel) disk, ray i at radius
 // sqrt((i + 1/2) / R) and angle 2 pi frac(i / phi), turned by the pixel's
 // rotation. Steps: evenly spaced over r, offset by one random fraction per
-// pixel that advances by 1/DEEPGI_TEMPORAL_CYCLE with each step of the
-// rotation cycle, so the cycle's frames stratify the step positions too.
+// pixel plus the second coordinate of this frame's temporal sample
+// (temporal_sequence.h), so a still camera's frames fill the step positions
+// evenly, independently of the angle (the first coordinate).
 // Every ray contributes at most 1/R: the value is in [0, 1], with no heavy
 // tail for the blur to spread.
 float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, float bias,
@@ -132,8 +133,7 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
   // Any tangent frame will do: the rotation randomises the pattern anyway.
   vec3 tangent = normalize(cross(normal, abs(normal.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
   vec3 bitangent = cross(normal, tangent);
-  float cycle = frame.temporal_angle * (1.0 / 6.2831855);
-  float offset = fract(float(avalanche32(pixel_rotation_hash(pixel) ^ 0x68e31da4u) >> 8u) * (1.0 / 16777216.0) + cycle);
+  float offset = fract(float(avalanche32(pixel_rotation_hash(pixel) ^ 0x68e31da4u) >> 8u) * (1.0 / 16777216.0) + frame.temporal_sample.y);
   float step_length = radius / float(DEEPGI_AO_MARCH_STEPS);
   float occlusion = 0.0;
   for (int i = 0; i < DEEPGI_AO_MARCH_RAYS; ++i) {
@@ -192,7 +192,7 @@ void main() {
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
   mat2 rotation = pixel_rotation(uvec2(pixel));
-  // This frame's step of the rotation cycle (frame.cpp), which ao_temporal.frag averages over.
+  // This frame's angle of the temporal sequence (frame.cpp), which ao_temporal.frag averages over.
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
   if (sao.method == DEEPGI_AO_METHOD_MARCH) {
     out_visibility = pow(march_visibility(uvec2(pixel), position, normal, radius, bias, rotation), intensity);

@@ -66,8 +66,10 @@ struct FrameConstants {
 
   int light_kind;  // DEEPGI_LIGHT_*
   int debug_view;  // DEEPGI_VIEW_*
-  int temporal_phase;    // frames since history was invalidated, modulo DEEPGI_TEMPORAL_CYCLE
-  float temporal_angle;  // rad, this frame's extra rotation of the gather patterns (0 at phase 0)
+  int temporal_frame;    // frames since history was invalidated (0 on the first)
+  float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
+
+  vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
 };
 
 #endif

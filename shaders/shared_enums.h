@@ -1,4 +1,4 @@
-// The layer count, the temporal rotation cycle, the march's ray and step
+// The layer count, the temporal filters' cap, the march's ray and step
 // counts and the values of the renderer's enums, shared by GLSL and C++: the C++ enums in
 // runtime/include/deepgi/settings.hpp take their values from these, so the
 // two sides cannot disagree. Only #define lines, so it can be included
@@ -8,12 +8,10 @@
 
 #define DEEPGI_LAYER_COUNT 2  // deep G-buffer layers
 
-// Temporal filters rotate the gather patterns through this many angles, one
-// per frame, then repeat (FrameConstants.temporal_phase counts them). Public,
-// as the layer count is: a static camera's history is the mean of every
-// rotation after 1 + DEEPGI_TEMPORAL_CYCLE frames, which the report and the
-// accuracy test measure.
-#define DEEPGI_TEMPORAL_CYCLE 8
+// The temporal filters' history under a still camera is the running mean of
+// at most this many frames (temporal_accumulation.glsl; the choice is argued
+// in docs/radiosity.md, "Temporal accumulation"). Public, as the layer count is.
+#define DEEPGI_TEMPORAL_CAP 256
 
 #define DEEPGI_GENERATOR_PEEL 0
 #define DEEPGI_GENERATOR_PREVIOUS 1

@@ -1,46 +1,32 @@
-// Temporal accumulation over whole rotation cycles, shared by the radiosity
-// and AO temporal filters.
+// Temporal accumulation, shared by the radiosity and AO temporal filters.
 //
-// The gather patterns rotate through DEEPGI_TEMPORAL_CYCLE (P) angles and
-// repeat (frame.cpp). Per pixel the history holds
-//   mean:    the filtered result,
-//   partial: the running mean of the frames of the current cycle so far,
-//   count:   frames accumulated (in the history key's w), capped at 255.
-// While a pixel has fewer than P frames, mean is the running mean of all of
-// them (history weight n / (n + 1)): a disoccluded pixel converges as fast as
-// plain averaging allows. From then on mean changes only when a cycle ends,
-// to mean + (1 - alpha^P) * (cycle mean - mean): alpha^P per cycle forgets
-// old light as fast as a per-frame blend with weight alpha would. Why this converges under a
-// static camera: each cycle sees the same P patterns, so with unchanging
-// inputs every cycle mean is the same number, bit for bit (same operations on
-// the same values), and mean stops moving once it holds it; a plain
-// exponential blend of a rotating pattern instead keeps moving by
-// (1 - alpha) * (this frame's pattern - mean) forever. With bounces
-// (rho_prop > 0) the inputs themselves converge geometrically, and so does
-// mean. alpha <= 0 turns the filter off (the raw result).
+// Each frame's gather takes a new point of a sequence that never repeats
+// (temporal_sequence.h), so the frames are independent-ish samples of the
+// integral the gather estimates and their mean converges to it. Per pixel
+// the history holds the filtered mean and, in the history key's w, the
+// number n of frames it stands for. The history weight is
+//   still pixel:  n / (n + 1), n capped at DEEPGI_TEMPORAL_CAP - 1:
+//                 the running mean of all frames, then of the last ~CAP;
+//   moving pixel: min(n / (n + 1), alpha): the exponential blend, whose
+//                 history stands for 1 / (1 - alpha) frames, so n is capped
+//                 there and a camera that stops resumes the running mean
+//                 at about the weight it had, with no jump.
+// A pixel is still when its motion vector is below 1/64 pixel
+// (history_reprojection.glsl). alpha <= 0 turns the filter off (the raw
+// result). Why the cap, and what it costs, in docs/radiosity.md.
 
 struct Accumulation {
   vec4 mean;
-  vec4 partial;
   float count;
 };
 
-Accumulation accumulate(vec4 raw, vec4 mean, vec4 partial, float count, float alpha) {
-  if (alpha <= 0.0) return Accumulation(raw, raw, 0.0);
-  int n = int(count);
-  int phase = frame.temporal_phase;
-  // Frames of the current cycle this pixel's partial mean already holds.
-  int in_cycle = min(n, phase);
+Accumulation accumulate(vec4 raw, vec4 mean, float count, float alpha, bool still) {
+  if (alpha <= 0.0) return Accumulation(raw, 0.0);
+  float n = still ? min(count, float(DEEPGI_TEMPORAL_CAP - 1)) : count;
+  float history_weight = n / (n + 1.0);
+  if (!still) history_weight = min(history_weight, alpha);
   Accumulation result;
-  result.partial = in_cycle == 0 ? raw : partial + (raw - partial) / float(in_cycle + 1);
-  if (n < DEEPGI_TEMPORAL_CYCLE) {
-    result.mean = n == 0 ? raw : mean + (raw - mean) / float(n + 1);
-  } else if (phase == DEEPGI_TEMPORAL_CYCLE - 1) {
-    // n >= P > phase, so partial covers the whole cycle that ends now.
-    result.mean = mean + (result.partial - mean) * (1.0 - pow(alpha, float(DEEPGI_TEMPORAL_CYCLE)));
-  } else {
-    result.mean = mean;
-  }
-  result.count = float(min(n + 1, 255));
+  result.mean = mix(raw, mean, history_weight);
+  result.count = still ? n + 1.0 : min(n + 1.0, 1.0 / (1.0 - alpha));
   return result;
 }

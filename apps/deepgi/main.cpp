@@ -45,9 +45,10 @@ struct Options {
     std::string view = "final";
     std::string dump;
     bool ao_bias_given = false;
-    // One value per row of deepgi::numeric_settings(), in table order; only
-    // the options given on the command line are applied.
-    std::vector<double> numeric;
+    // One value per row of deepgi::numeric_settings(), in table order, as
+    // typed (a number, or "auto" for a length); only the options given on
+    // the command line are applied, and lengths not given are auto.
+    std::vector<std::string> numeric;
     std::vector<bool> numeric_given;
     std::string timing = "auto";
     bool camera_path = false;
@@ -92,11 +93,14 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.timing = deepgi::parse_timing_mode("--timing", options.timing);
     const auto rows = deepgi::numeric_settings();
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (!options.numeric_given[i]) continue;
-        // Checked as given, before the float conversion could round 2.5 to
+        if (!options.numeric_given[i]) {
+            // Lengths follow the scene unless given (docs/deepgi.md, "Scene scale").
+            if (deepgi::accepts_auto(rows[i])) rows[i].set(settings, deepgi::auto_length);
+            continue;
+        }
+        // Checked as typed, before the float conversion could round 2.5 to
         // a whole number.
-        deepgi::check_setting(rows[i], options.numeric[i]);
-        rows[i].set(settings, float(options.numeric[i]));
+        rows[i].set(settings, deepgi::parse_setting_value(rows[i], options.numeric[i]));
     }
     settings.ao.method = deepgi::parse_ao_method("--ao-method", options.ao_method);
     if (!options.ao_bias_given) settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
@@ -134,6 +138,9 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::HeadlessContext context;
     deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    for (const std::string& line : deepgi::describe_auto_lengths(
+             settings, renderer.settings_in_use(), deepgi::scene_bounding_radius(scene)))
+        fmt::print("scene scale: {}\n", line);
     // A labelled bar for long runs, only where someone watches.
     const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {
@@ -270,11 +277,16 @@ int main(int argc, char** argv) {
         options.numeric_given.assign(rows.size(), false);
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const deepgi::NumericSetting& row = rows[i];
-            options.numeric[i] = row.get(defaults);
+            options.numeric[i] = deepgi::accepts_auto(row) ? std::string("auto")
+                                                           : fmt::format("{}", row.get(defaults));
             app.add_option(fmt::format("--{}", row.name), options.numeric[i],
                            fmt::format("{} ({})", row.help, deepgi::describe_limits(row)))
-                ->type_name(row.integer ? "INT" : "FLOAT")
-                ->default_str(spiral_apps::with_unit(row.get(defaults), row.unit))
+                ->type_name(row.integer                 ? "INT"
+                            : deepgi::accepts_auto(row) ? "FLOAT|auto"
+                                                        : "FLOAT")
+                                ->default_str(deepgi::accepts_auto(row)
+                                  ? std::string("auto, from the scene's size")
+                                  : spiral_apps::with_unit(row.get(defaults), row.unit))
                 ->group(row.group == "frame"       ? "Frame"
                         : row.group == "ao"        ? "Deep SAO"
                         : row.group == "radiosity" ? "Deep radiosity"

@@ -10,6 +10,7 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/settings.hpp"
 #include "deepgi/reference.hpp"
+#include "deepgi/renderer.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -38,12 +39,14 @@ struct ReferenceOptions {
     double target_error = 0.004;
     std::uint64_t seed = 1;
     int threads = 0;
-    float radius = deepgi::RenderSettings{}.ao.radius;
+    // Lengths as typed: a number or "auto", resolved against the scene as
+    // deepgi resolves them, so both measure the same radii by default.
+    std::string radius = "auto";
     float guard_band = deepgi::RenderSettings{}.guard_band_fraction;
-    float min_separation = deepgi::RenderSettings{}.min_separation;
+    std::string min_separation = "auto";
     bool no_ao = false;
     bool no_irradiance = false;
-    float radiosity_radius = deepgi::RenderSettings{}.radiosity.radius;
+    std::string radiosity_radius = "auto";
     int irradiance_rays = 16384;
     int irradiance_min_rays = 1024;
     int irradiance_ceiling_rays = 65536;
@@ -69,10 +72,15 @@ int run(const ReferenceOptions& options) {
     if (options.output.empty()) throw deepgi::InputError("reference needs --output DIR");
     if (options.rays < 1) throw deepgi::InputError("--rays must be at least 1");
     // The renderer's settings the reference shares, checked by their rows.
-    deepgi::check_setting(row("ao-radius"), options.radius);
     deepgi::check_setting(row("guard-band"), options.guard_band);
-    deepgi::check_setting(row("min-separation"), options.min_separation);
-    deepgi::check_setting(row("radiosity-radius"), options.radiosity_radius);
+    row("ao-radius")
+        .set(settings.render, deepgi::parse_setting_value(row("ao-radius"), options.radius));
+    row("min-separation")
+        .set(settings.render,
+             deepgi::parse_setting_value(row("min-separation"), options.min_separation));
+    row("radiosity-radius")
+        .set(settings.render,
+             deepgi::parse_setting_value(row("radiosity-radius"), options.radiosity_radius));
     if (!(options.target_error >= 0.0)) throw deepgi::InputError("--target-error must be >= 0");
     if (options.irradiance_rays < 1)
         throw deepgi::InputError("--irradiance-rays must be at least 1");
@@ -91,14 +99,11 @@ int run(const ReferenceOptions& options) {
                                              output.string(), parent.string()));
 
     settings.render.guard_band_fraction = options.guard_band;
-    settings.render.min_separation = options.min_separation;
-    settings.render.ao.radius = options.radius;
     settings.rays.max_rays = options.rays;
     settings.rays.min_rays = std::min(options.min_rays, options.rays);
     settings.rays.target_error = options.target_error;
     settings.ambient_visibility = !options.no_ao;
     settings.irradiance = !options.no_irradiance;
-    settings.radiosity_radius = options.radiosity_radius;
     settings.irradiance_rays.max_rays = options.irradiance_rays;
     settings.irradiance_rays.min_rays =
         std::min(options.irradiance_min_rays, options.irradiance_rays);
@@ -129,6 +134,13 @@ int run(const ReferenceOptions& options) {
     }
 
     const deepgi::Scene scene = deepgi::load_scene(options.scene);
+    const deepgi::RenderSettings given = settings.render;
+    settings.render =
+        deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
+    settings.radiosity_radius = settings.render.radiosity.radius;
+    for (const std::string& line : deepgi::describe_auto_lengths(
+             given, settings.render, deepgi::scene_bounding_radius(scene)))
+        fmt::print("scene scale: {}\n", line);
     const auto start = std::chrono::steady_clock::now();
     const deepgi::RayScene rays(scene);
     const deepgi::ReferenceImages images =

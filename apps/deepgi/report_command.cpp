@@ -138,7 +138,7 @@ int run_report_command(int argc, char** argv) {
         ->default_str(fmt::format("{} frame", report.warmup));
     app.add_option("--frames", report.frames,
                    "Timed frames (the median is reported); the accumulated errors are read after "
-                   "a whole rotation cycle of static frames either way")
+                   "9 static frames either way")
         ->default_str(fmt::format("{} frames", report.frames));
     app.add_option("--threads", report.threads, "Reference threads (0: all hardware threads)")
         ->default_str("0, all hardware threads");

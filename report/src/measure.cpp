@@ -32,15 +32,16 @@ namespace {
 
 // A temporal AO pass, when the build has one, publishes its accumulated
 // visibility under this name; the report then fills the ref_temporal_*
-// columns after a whole rotation cycle (kAccumulatedFrames).
+// columns after kAccumulatedFrames still frames.
 constexpr const char* kTemporalAoOutput = "ao-temporal";
 // The temporally filtered layer-0 irradiance (radiosity pass).
 constexpr const char* kTemporalIrradianceOutput = "radiosity-irradiance-layer0";
 
 // Static frames after a cut until the accumulated columns are read: the
-// temporal filters then hold the mean of every rotation of the cycle
-// (frame.cpp), what a still camera converges to.
-constexpr int kAccumulatedFrames = 1 + DEEPGI_TEMPORAL_CYCLE;
+// temporal filters then hold the running mean of that many frames, each
+// with a new rotation (frame.cpp), on the way to what a still camera
+// converges to. Nine, as when the rotation ran through a cycle of eight.
+constexpr int kAccumulatedFrames = 9;
 
 // The ray-traced one-bounce irradiance that the radiosity gather estimates
 // (viewport layout as ambient_visibility); empty when it was not traced.
@@ -169,8 +170,7 @@ ReferenceSettings reference_settings(const ReportOptions& options, const RenderS
 }
 
 // What the static frames after a row's cut give: every timed pass's samples,
-// and the errors of what the temporal filters accumulated over a whole
-// rotation cycle.
+// and the errors of what the temporal filters accumulated over them.
 struct StaticFrames {
     std::map<std::string, std::vector<double>> samples;
     std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal, rad_ref_accum;
@@ -178,8 +178,8 @@ struct StaticFrames {
 };
 
 // Continuous static frames after the cut: the timed ones (so history-based
-// passes do what they do in an animation), and at least the rest of a
-// rotation cycle, after which the accumulated errors are read.
+// passes do what they do in an animation), and at least kAccumulatedFrames,
+// after which the accumulated errors are read.
 StaticFrames run_static_frames(
     Renderer& renderer, const Camera& camera, const ReportOptions& options,
     const FloatImage& truth_visibility, const std::vector<std::uint8_t>& agreed,

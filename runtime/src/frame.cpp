@@ -19,8 +19,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace deepgi {
+
+namespace shader_shared {
+// The shader's own sequence source (shaders/temporal_sequence.h).
+using uint = std::uint32_t;
+#define DEEPGI_SHARED_FUNCTION inline
+#include "temporal_sequence.h"
+#undef DEEPGI_SHARED_FUNCTION
+}  // namespace shader_shared
+using shader_shared::temporal_sequence_u_fixed;
+using shader_shared::temporal_sequence_v_fixed;
 
 namespace fs = std::filesystem;
 using shader_shared::FrameConstants;
@@ -59,7 +70,8 @@ const std::vector<PassFactory>& default_pass_list() {
 
 struct RendererState {
     Scene scene;
-    RenderSettings settings;
+    RenderSettings settings;  // as given: lengths may be auto_length
+    RenderSettings in_use;    // `auto` resolved for this scene: what the passes read
     ShaderLoader loader;
     SceneGpu scene_gpu;
     gl::VertexArray empty_vertex_array;
@@ -70,7 +82,7 @@ struct RendererState {
     PassTimer timer{true};
     std::optional<Camera> last_camera;   // converts dumped depth to metres
     std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
-    int temporal_frame = 0;  // frames since history was invalidated, modulo the rotation cycle
+    std::uint32_t temporal_frame = 0;    // frames since history was invalidated (wraps at 2^32)
 
     RendererState(const Scene& source, const RenderSettings& render_settings,
                   const ShaderLoader& shader_loader)
@@ -110,7 +122,7 @@ void throw_gl_errors(RendererState& state, std::string_view where) {
 // pass's render targets. Programs are untouched.
 void resize_passes(RendererState& state) {
     FrameResources& frame = state.frame;
-    frame.settings = &state.settings;
+    frame.settings = &state.in_use;
     frame.scene = &state.scene;
     frame.scene_gpu = &state.scene_gpu;
     frame.layout = frame_layout(state.settings);
@@ -122,22 +134,19 @@ void resize_passes(RendererState& state) {
     }
 }
 
-// This frame's extra rotation of the gather patterns. The angles cycle through
-// DEEPGI_TEMPORAL_CYCLE evenly spaced values, taken in bit-reversed order so
-// that every prefix of a cycle is spread around the circle too. Because the
-// sequence repeats, a static camera sees the same DEEPGI_TEMPORAL_CYCLE raw
-// results again and again, and a filter that averages whole cycles stops
-// changing (temporal_accumulation.glsl); an endless sequence (golden ratio)
-// would keep feeding it new noise.
-float temporal_angle(int phase) {
-    static_assert(DEEPGI_TEMPORAL_CYCLE == 8, "the bit reversal below is for 3 bits");
-    const int reversed = ((phase & 1) << 2) | (phase & 2) | ((phase >> 2) & 1);
-    return float(reversed) * (6.2831853f / float(DEEPGI_TEMPORAL_CYCLE));
+// This frame's point of the temporal sequence (shaders/temporal_sequence.h),
+// k frames after history was invalidated: (0, 0) on the first frame, then a
+// low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
+// running mean keeps receiving new samples of the integral.
+glm::vec2 temporal_sample(std::uint32_t k) {
+    constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float
+    return {float(temporal_sequence_u_fixed(k) >> 8u) * to_unit,
+            float(temporal_sequence_v_fixed(k) >> 8u) * to_unit};
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
                                     const Camera& previous) {
-    const RenderSettings& settings = state.settings;
+    const RenderSettings& settings = state.in_use;
     const FrameLayout layout = frame_layout(settings);
     const KeyLight& light = state.scene.key_light;
     const ShadowProjection& shadow = state.frame.shadow;
@@ -184,8 +193,10 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
                            : light.kind == LightKind::spot      ? DEEPGI_LIGHT_SPOT
                                                                 : DEEPGI_LIGHT_POINT;
     constants.debug_view = static_cast<int>(settings.view);
-    constants.temporal_phase = state.temporal_frame % DEEPGI_TEMPORAL_CYCLE;
-    constants.temporal_angle = temporal_angle(constants.temporal_phase);
+    const glm::vec2 sample = temporal_sample(state.temporal_frame);
+    constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
+    constants.temporal_angle = sample.x * 6.2831853f;
+    constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);
     return constants;
 }
 
@@ -213,7 +224,7 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     frame.begin_frame_textures();
     for (std::size_t i = 0; i < state.passes.size(); ++i) {
         Pass* pass = state.passes[i].get();
-        if (!pass->enabled(state.settings)) continue;
+        if (!pass->enabled(state.in_use)) continue;
         ScopedPass timed(state.timer, std::string(pass->name()));
         // check_pass_declarations() has made sure every read is written.
         const PassDeclaration& declaration = state.declarations[i];
@@ -229,14 +240,14 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     frame.end_frame();
     state.last_camera = camera;
-    state.temporal_frame = (state.temporal_frame + 1) % DEEPGI_TEMPORAL_CYCLE;
+    ++state.temporal_frame;
 }
 
 // Every enabled pass's outputs, in pass order.
 std::vector<PassOutput> all_outputs(const RendererState& state) {
     std::vector<PassOutput> outputs;
     for (const auto& pass : state.passes) {
-        if (!pass->enabled(state.settings)) continue;
+        if (!pass->enabled(state.in_use)) continue;
         for (auto& output : pass->outputs(state.frame)) outputs.push_back(std::move(output));
     }
     return outputs;
@@ -252,6 +263,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     : state_(std::make_unique<RendererState>(scene, settings, loader)) {
     validate(settings);
     RendererState& state = *state_;
+    state.in_use = resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
     state.scene_gpu = upload_scene(state.scene);
     state.empty_vertex_array = gl::create_vertex_array();
     state.frame_constants = gl::create_buffer();
@@ -261,7 +273,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     install_gl_debug(state, settings.gl_debug);
     try {
         for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
-        state.declarations = check_pass_declarations(state.passes, state.settings);
+        state.declarations = check_pass_declarations(state.passes, state.in_use);
         resize_passes(state);
     } catch (...) {
         // No destructor runs for a half-built renderer; the callback must not
@@ -309,8 +321,11 @@ void Renderer::set_settings(const RenderSettings& settings) {
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).
-    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, settings);
+    const RenderSettings in_use =
+        resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
+    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, in_use);
     state.settings = settings;
+    state.in_use = in_use;
     state.declarations = std::move(declarations);
     if (reallocate) resize_passes(state);
     if (invalidate) state.frame.invalidate_history(reason);
@@ -319,6 +334,16 @@ void Renderer::set_settings(const RenderSettings& settings) {
 
 const RenderSettings& Renderer::settings() const {
     return state_->settings;
+}
+
+const RenderSettings& Renderer::settings_in_use() const {
+    return state_->in_use;
+}
+
+float scene_bounding_radius(const Scene& scene) {
+    const float radius = 0.5f * glm::length(scene.bounds.max - scene.bounds.min);
+    // An empty or degenerate scene still gets positive lengths.
+    return std::isfinite(radius) && radius > 0.0f ? radius : 1.0f;
 }
 
 void Renderer::set_key_light(const KeyLight& light) {

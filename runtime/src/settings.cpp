@@ -145,8 +145,11 @@ void validate(const RenderSettings& settings) {
     check_enum("--ao-method", settings.ao.method);
     check_enum("--radiosity-method", settings.radiosity.method);
     // Every numeric setting from its row, in panel order.
-    for (const NumericSetting& setting : numeric_settings())
-        check_setting(setting, setting.get(settings));
+    for (const NumericSetting& setting : numeric_settings()) {
+        const float value = setting.get(settings);
+        if (accepts_auto(setting) && value == auto_length) continue;
+        check_setting(setting, value);
+    }
 }
 
 namespace {
@@ -160,6 +163,13 @@ namespace {
     .set = [](RenderSettings& s, float value) { s.member = int(std::lround(value)); }
 
 constexpr float unlimited = std::numeric_limits<float>::infinity();
+
+// `auto` lengths as fractions of the scene's bounding radius (half its box
+// diagonal); docs/deepgi.md, "Scene scale", says how they were chosen.
+constexpr float kAoRadiusFraction = 0.1f;
+constexpr float kThicknessFraction = 0.04f;
+constexpr float kRadiosityRadiusFraction = 0.6f;
+constexpr float kMinSeparationFraction = 0.1f;
 constexpr SettingEffect reallocate = SettingEffect::reallocate;
 constexpr SettingEffect drop_history = SettingEffect::drop_history;
 
@@ -181,7 +191,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .maximum = unlimited,
      .slider_min = 0.0f,
      .slider_max = 2.0f,
-     DEEPGI_FLOAT_FIELD(min_separation)},
+     DEEPGI_FLOAT_FIELD(min_separation),
+     .scene_fraction = kMinSeparationFraction},
     {.name = "exposure",
      .label = "exposure",
      .group = "frame",
@@ -242,7 +253,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .slider_min = 0.01f,
      .slider_max = 10.0f,
      .logarithmic = true,
-     DEEPGI_FLOAT_FIELD(ao.radius)},
+     DEEPGI_FLOAT_FIELD(ao.radius),
+     .scene_fraction = kAoRadiusFraction},
     {.name = "ao-bias",
      .label = "bias (m)",
      .group = "ao",
@@ -306,8 +318,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .label = "temporal alpha",
      .group = "ao",
      .owner = "ao_temporal",
-     .help = "AO temporal filter's history weight across rotation cycles (0: raw SAO of each "
-             "frame)",
+     .help = "AO temporal filter's history weight where the point moves on screen; a still "
+             "point keeps the running mean of up to 256 frames (0: raw SAO of each frame)",
      .minimum = 0.0f,
      .maximum = 1.0f,
      .maximum_inclusive = false,
@@ -327,7 +339,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .slider_min = 0.01f,
      .slider_max = 1.0f,
      .logarithmic = true,
-     DEEPGI_FLOAT_FIELD(ao.thickness)},
+     DEEPGI_FLOAT_FIELD(ao.thickness),
+     .scene_fraction = kThicknessFraction},
     {.name = "radiosity-radius",
      .label = "radius (m)",
      .group = "radiosity",
@@ -340,7 +353,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .slider_min = 0.05f,
      .slider_max = 10.0f,
      .logarithmic = true,
-     DEEPGI_FLOAT_FIELD(radiosity.radius)},
+     DEEPGI_FLOAT_FIELD(radiosity.radius),
+     .scene_fraction = kRadiosityRadiusFraction},
     {.name = "radiosity-boost",
      .label = "boost",
      .group = "radiosity",
@@ -378,7 +392,8 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .label = "temporal alpha",
      .group = "radiosity",
      .owner = "radiosity",
-     .help = "Deep radiosity: temporal filter's history weight (0: raw gather)",
+     .help = "Deep radiosity: temporal filter's history weight where the point moves on "
+             "screen; a still point keeps the running mean of up to 256 frames (0: raw gather)",
      .minimum = 0.0f,
      .maximum = 1.0f,
      .maximum_inclusive = false,
@@ -464,6 +479,11 @@ const NumericSetting* find_numeric_setting(std::string_view name) {
 }
 
 std::string describe_limits(const NumericSetting& setting) {
+    if (accepts_auto(setting)) {
+        NumericSetting number = setting;
+        number.scene_fraction = 0.0f;
+        return describe_limits(number) + ", or auto";
+    }
     if (setting.integer) {
         if (setting.maximum == setting.minimum + 1.0f)
             return fmt::format("{} or {}", setting.minimum, setting.maximum);
@@ -488,6 +508,50 @@ void check_setting(const NumericSetting& setting, double value) {
         throw InputError(
             fmt::format("--{} must be {}, got {}", setting.name, describe_limits(setting), value));
     throw InputError(fmt::format("--{} must be {}", setting.name, describe_limits(setting)));
+}
+
+float parse_setting_value(const NumericSetting& setting, std::string_view text) {
+    if (text == "auto") {
+        if (accepts_auto(setting)) return auto_length;
+        throw InputError(fmt::format("--{} must be {} (auto is not one of its values)",
+                                     setting.name, describe_limits(setting)));
+    }
+    // The whole text must be one number: no trailing characters, no hex.
+    const std::string copy(text);
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+        value = std::stod(copy, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    const bool hex = copy.find_first_of("xX") != std::string::npos;
+    if (copy.empty() || used != copy.size() || hex || !std::isfinite(value)) {
+        throw InputError(
+            fmt::format("--{} must be {}, got '{}'", setting.name, describe_limits(setting), text));
+    }
+    check_setting(setting, value);
+    return float(value);
+}
+
+RenderSettings resolve_auto_lengths(RenderSettings settings, float scene_radius) {
+    for (const NumericSetting& setting : numeric_settings()) {
+        if (accepts_auto(setting) && setting.get(settings) == auto_length)
+            setting.set(settings, setting.scene_fraction * scene_radius);
+    }
+    return settings;
+}
+
+std::vector<std::string> describe_auto_lengths(const RenderSettings& given,
+                                               const RenderSettings& in_use, float scene_radius) {
+    std::vector<std::string> lines;
+    for (const NumericSetting& setting : numeric_settings()) {
+        if (!accepts_auto(setting) || setting.get(given) != auto_length) continue;
+        lines.push_back(fmt::format("{} auto = {:.4g} scene units ({} x bounding radius {:.4g})",
+                                    setting.name, setting.get(in_use), setting.scene_fraction,
+                                    scene_radius));
+    }
+    return lines;
 }
 
 }  // namespace deepgi

@@ -2,6 +2,7 @@
 // corner of two planes, and the camera rays against analytic plane depths.
 #include "../support/textbook_camera.hpp"
 #include "deepgi/reference.hpp"
+#include "deepgi/renderer.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -309,6 +310,11 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     settings.irradiance_rays.min_rays = settings.irradiance_rays.max_rays = 256;
     settings.radiosity_radius = 0.7f;
     const deepgi::Scene scene = deepgi::make_builtin_scene("ref-slab");
+    // The command leaves the AO radius and the separation at auto, which it
+    // resolves against the scene as deepgi does.
+    settings.render.ao.radius = settings.render.min_separation = deepgi::auto_length;
+    settings.render =
+        deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
     const deepgi::RayScene rays(scene);
     const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
     REQUIRE(visibility.pixels == images.ambient_visibility.pixels);

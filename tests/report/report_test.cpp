@@ -241,7 +241,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
             stage_error[stage] += error;
         }
     }
-    // A whole rotation cycle of a still camera averages eight rotations, so
+    // Nine frames of a still camera average nine rotations, so
     // the temporal filters' history is nearer the truth than a first frame's
     // raw gather, for AO and for radiosity alike.
     CHECK(stage_error["ref_temporal_mae"] < stage_error["ref_raw_mae"]);

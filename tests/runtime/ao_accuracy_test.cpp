@@ -107,8 +107,8 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
 }
 
 // Frames a static camera renders for the accumulated figures: the first
-// frame and a whole rotation cycle after it (frame.cpp).
-constexpr int accumulated_frames = 1 + DEEPGI_TEMPORAL_CYCLE;
+// frame and eight after it, each with a new rotation (frame.cpp).
+constexpr int accumulated_frames = 9;
 
 struct StageErrors {
     Error one_layer, two_layers;
@@ -183,6 +183,11 @@ spiral::test::TargetTable& targets() {
             {"march/atrium/open-blurred/first", {6.0, "measured 4 pixels"}},
             {"march/atrium/open-blurred/accumulated", {5.0, "measured 3 pixels"}},
             {"march/warehouse/open-blurred/accumulated", {3.0, "measured 1 pixel"}},
+            // Since the frames take points of the R2 sequence instead of a
+            // cycle of 8 (angle and step offset advancing together), 9 of
+            // warehouse's 21514 open pixels in open surroundings fall below
+            // 0.99 in the running mean of 9 frames, before the blur.
+            {"march/warehouse/open/accumulated", {11.0, "measured 9 pixels"}},
         });
     return table;
 }

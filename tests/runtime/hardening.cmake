@@ -35,3 +35,10 @@ target_compile_definitions(deepgi_gltf_render_tests PRIVATE
 add_dependencies(deepgi_gltf_render_tests deepgi)
 # A sample model that is absent ends its test with status 77 (support/skip.hpp).
 catch_discover_tests(deepgi_gltf_render_tests PROPERTIES LABELS runtime TIMEOUT 300 SKIP_RETURN_CODE 77)
+
+# ---- Scene scale: `auto` lengths follow the scene ----
+add_executable(deepgi_scene_scale_tests ${CMAKE_CURRENT_LIST_DIR}/scene_scale_test.cpp)
+target_link_libraries(deepgi_scene_scale_tests PRIVATE deepgi::runtime spiral_catch_main)
+target_compile_definitions(deepgi_scene_scale_tests PRIVATE
+  DEEPGI_SAMPLE_MODELS="${DEEPGI_SAMPLE_MODELS}")
+catch_discover_tests(deepgi_scene_scale_tests PROPERTIES LABELS runtime TIMEOUT 300)

@@ -114,7 +114,7 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     for (const RadiosityMethod method : {RadiosityMethod::area, RadiosityMethod::published}) {
         const RenderSettings settings = accuracy_settings(method);
         Renderer renderer(scene, settings, loader);
-        // One whole rotation cycle: the filtered E is the mean of its 8 gathers.
+        // Eight still frames: the filtered E is the mean of their 8 gathers.
         for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
         errors[method == RadiosityMethod::area ? 0 : 1] = measure(
             renderer.read_pass_output("radiosity-irradiance-layer0"),

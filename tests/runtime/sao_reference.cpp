@@ -39,7 +39,7 @@ float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const
     const glm::vec3 tangent = glm::normalize(glm::cross(normal, axis));
     const glm::vec3 bitangent = glm::cross(normal, tangent);
     const std::uint32_t hash = pixel_rotation_hash(std::uint32_t(x), std::uint32_t(y));
-    // The first frame: step 0 of the rotation cycle adds nothing to either.
+    // The first frame: point 0 of the temporal sequence adds nothing to either.
     const float offset = float(shader::avalanche32(hash ^ 0x68e31da4u) >> 8) * (1.0f / 16777216.0f);
     const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
     const float c = std::cos(phi), s = std::sin(phi);

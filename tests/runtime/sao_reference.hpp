@@ -43,7 +43,7 @@ struct SaoInputs {
 
 // Ambient visibility per pixel (1 channel, the pyramid's level-0 size): in
 // [0, 1] for the published and march methods, signed (at most 1) for the
-// solid-angle one. The first frame's: the rotation cycle at its step 0.
+// solid-angle one. The first frame's: the frame sequence at its point 0 (no extra rotation).
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings);

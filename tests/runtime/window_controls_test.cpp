@@ -64,7 +64,7 @@ TEST_CASE("window: script errors name the file, the line and the problem", "[run
     CHECK(script_error("frame 1 jump") ==
           "s.txt:1: unknown command 'jump' (set, key, screenshot, drop, quit)");
     CHECK(script_error("frame 1 set ao-radius -2") ==
-          "s.txt:1: --ao-radius must be a finite number of metres > 0");
+          "s.txt:1: --ao-radius must be a finite number of metres > 0, or auto");
     CHECK(script_error("frame 1 set ao-radius big") ==
           "s.txt:1: ao-radius: 'big' is not a finite number");
     CHECK(script_error("frame 1 set ao-radius 1 2") ==

@@ -167,14 +167,31 @@ bool enum_combo(const char* label, Enum& value) {
     return changed;
 }
 
-// Sliders for every numeric setting of one group, from the settings table.
-void numeric_sliders(std::string_view group, RenderSettings& settings) {
+// Sliders for every numeric setting of one group, from the settings table. A
+// length that follows the scene (`auto`) shows the value in use, greyed, and
+// a checkbox; unticking it keeps that value as an explicit one.
+void numeric_sliders(std::string_view group, RenderSettings& settings,
+                     const RenderSettings& in_use) {
     for (const NumericSetting& setting : numeric_settings()) {
         if (setting.group != group) continue;
         ImGui::PushID(setting.name.data(), setting.name.data() + setting.name.size());
         const std::string label = std::string(setting.label);
         const ImGuiSliderFlags flags = setting.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
-        if (setting.integer) {
+        if (accepts_auto(setting)) {
+            bool follows_scene = setting.get(settings) == auto_length;
+            if (ImGui::Checkbox("auto", &follows_scene))
+                setting.set(settings, follows_scene ? auto_length : setting.get(in_use));
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
+            ImGui::SameLine();
+        }
+        if (accepts_auto(setting) && setting.get(settings) == auto_length) {
+            float value = setting.get(in_use);
+            ImGui::BeginDisabled();
+            ImGui::SliderFloat(label.c_str(), &value, setting.slider_min, setting.slider_max,
+                               "%.4g", flags);
+            ImGui::EndDisabled();
+        } else if (setting.integer) {
             int value = int(std::lround(setting.get(settings)));
             if (ImGui::SliderInt(label.c_str(), &value, int(setting.slider_min),
                                  int(setting.slider_max), "%d", flags))
@@ -263,6 +280,9 @@ float scene_size(const Scene& scene) {
 void install_scene(WindowState& state, Scene scene, const std::string& camera) {
     const Camera home = camera.empty() ? scene.default_camera : find_file_camera(scene, camera);
     auto renderer = std::make_unique<Renderer>(scene, state.settings, state.loader);
+    for (const std::string& line : describe_auto_lengths(
+             state.settings, renderer->settings_in_use(), scene_bounding_radius(scene)))
+        fmt::print("scene scale: {}\n", line);
     state.renderer = std::move(renderer);
     state.scene = std::move(scene);
     state.light = state.scene.key_light;
@@ -352,18 +372,18 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         enum_combo("generator (G)", wanted.generator);
         enum_combo("view (V)", wanted.view);
         enum_combo("timing", wanted.timing);
-        numeric_sliders("frame", wanted);
+        numeric_sliders("frame", wanted, state.renderer->settings_in_use());
     }
     if (ImGui::CollapsingHeader("ambient occlusion", ImGuiTreeNodeFlags_DefaultOpen)) {
         enum_combo("method (M)", wanted.ao.method);
-        numeric_sliders("ao", wanted);
+        numeric_sliders("ao", wanted, state.renderer->settings_in_use());
     }
     if (ImGui::CollapsingHeader("radiosity and temporal filter", ImGuiTreeNodeFlags_DefaultOpen)) {
         enum_combo("radiosity method", wanted.radiosity.method);
-        numeric_sliders("radiosity", wanted);
+        numeric_sliders("radiosity", wanted, state.renderer->settings_in_use());
     }
     if (ImGui::CollapsingHeader("bilateral blur (AO and radiosity)"))
-        numeric_sliders("blur", wanted);
+        numeric_sliders("blur", wanted, state.renderer->settings_in_use());
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         KeyLight& light = state.light;
         ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"

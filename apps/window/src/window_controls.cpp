@@ -192,9 +192,14 @@ void apply_set_command(const std::string& name, const std::vector<std::string>& 
                                      expected_values(name), values.size()));
     }
     if (const NumericSetting* setting = find_numeric_setting(name)) {
-        const float value = parse_float(name, values[0]);
+        // `auto` for a length; a number is checked as typed, so -1 is never
+        // taken for auto_length.
+        const float value = setting->scene_fraction > 0.0f && values[0] == "auto"
+                                ? auto_length
+                                : parse_float(name, values[0]);
         if (setting->integer && value != std::round(value))
             throw InputError(fmt::format("{}: '{}' is not a whole number", name, values[0]));
+        if (values[0] != "auto") check_setting(*setting, value);
         RenderSettings trial = settings;
         setting->set(trial, value);
         validate(trial);

@@ -40,6 +40,10 @@ using PassFactory = std::unique_ptr<Pass> (*)(const ShaderLoader& loader, const 
 // (history is invalidated before the frame renders).
 enum class CameraMotion { continuous, cut };
 
+// Half the diagonal of the scene's bounding box (scene units), what `auto`
+// lengths are fractions of; 1 for an empty scene.
+float scene_bounding_radius(const Scene& scene);
+
 class Renderer {
 public:
     // The default pass list.
@@ -60,7 +64,11 @@ public:
     // count (the layer-1 history was not written while it was off). Every
     // other setting applies from the next frame with history kept.
     void set_settings(const RenderSettings& settings);
+    // As given (lengths may be auto_length)...
     const RenderSettings& settings() const;
+    // ...and as the passes read them: every `auto` length resolved against
+    // this renderer's scene (resolve_auto_lengths, scene_bounding_radius).
+    const RenderSettings& settings_in_use() const;
     // Edits the key light in place (the frame constants and the shadow
     // projection follow; nothing is reallocated or rebuilt). History is kept:
     // the temporal filter blends the new light in. Throws InputError for a

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace deepgi {
 
@@ -152,8 +153,10 @@ struct AoSettings {
     // backface_depth pass). 0.1 to 1 m move warehouse's bias by less than
     // .001 (docs/deep-sao.md, "The march").
     float thickness = 0.2f;
-    // Temporal filter: weight of the history across whole rotation cycles
-    // (0: the raw SAO result of each frame); see docs/radiosity.md.
+    // Temporal filter: weight of the history where the point moves on
+    // screen; a still point keeps the running mean of up to
+    // DEEPGI_TEMPORAL_CAP frames (0: the raw SAO result of each frame); see
+    // docs/radiosity.md.
     float alpha = 0.85f;
     // false: compose takes the visibility as 1 (the passes still run, so the
     // AO debug views keep working); for showing what AO adds.
@@ -169,8 +172,8 @@ struct RadiositySettings {
     // the sample's area weight (area method) or alone (published method).
     float tap_clamp = 16.0f;
     float rho_prop = 0.5f;  // share of last frame's indirect light fed into the next gather
-    float alpha = 0.85f;  // temporal filter: history weight across rotation cycles (0: raw gather)
-    int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
+    float alpha = 0.85f;    // temporal filter: history weight where the point moves (0: raw gather)
+    int layers = 2;         // 1: layer 0 only, 2: both deep G-buffer layers
     RadiosityMethod method = RadiosityMethod::area;
     // false: compose takes E and its confidence as 0, so the environment term
     // fills everywhere (the passes still run for their debug views).
@@ -262,6 +265,10 @@ struct NumericSetting {
     SettingEffect effect = SettingEffect::none;
     float (*get)(const RenderSettings&) = nullptr;
     void (*set)(RenderSettings&, float) = nullptr;
+    // > 0: the row is a length that accepts `auto` (auto_length in the
+    // settings), meaning this fraction of the scene's bounding radius; the
+    // renderer resolves it for the scene it draws (resolve_auto_lengths).
+    float scene_fraction = 0.0f;
 };
 // In panel order.
 std::span<const NumericSetting> numeric_settings();
@@ -271,7 +278,27 @@ const NumericSetting* find_numeric_setting(std::string_view name);
 // row accepts, in words, for help texts and messages.
 std::string describe_limits(const NumericSetting& setting);
 // Throws InputError "--NAME must be <describe_limits>" (", got V" for an
-// integer) when `value` is outside the row's limits.
+// integer) when `value` is outside the row's limits. A number only: `auto`
+// is never a number (parse_setting_value).
 void check_setting(const NumericSetting& setting, double value);
+
+// The value a length row holds for `auto`. Negative, so no valid length is
+// taken for it; validate() accepts it only in rows with a scene_fraction.
+inline constexpr float auto_length = -1.0f;
+inline bool accepts_auto(const NumericSetting& setting) {
+    return setting.scene_fraction > 0.0f;
+}
+// What the command line, --script `set` and the panel accept for a row:
+// "auto" where accepts_auto() (returns auto_length), or a number within the
+// row's limits (check_setting). Throws InputError naming --NAME otherwise.
+float parse_setting_value(const NumericSetting& setting, std::string_view text);
+// Every `auto` length replaced by its row's fraction of `scene_radius` (the
+// scene's bounding radius, scene units); explicit numbers are kept.
+RenderSettings resolve_auto_lengths(RenderSettings settings, float scene_radius);
+// One line per `auto` row of `given`, with the value `in_use` holds:
+// "ao-radius auto = 0.412 (0.24 x bounding radius 1.72)". Empty when no row
+// of `given` is auto.
+std::vector<std::string> describe_auto_lengths(const RenderSettings& given,
+                                               const RenderSettings& in_use, float scene_radius);
 
 }  // namespace deepgi

@@ -1,6 +1,6 @@
 // Temporal filter of the ambient visibility (shaders/ao_temporal.frag): SAO's
-// raw result, whose taps rotate through a short cycle of angles, accumulated
-// over whole cycles with history found through the G-buffer's motion vectors.
+// raw result, whose taps turn by a new angle each frame, accumulated with
+// history found through the G-buffer's motion vectors.
 // The AO blur reads its result.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
@@ -18,7 +18,7 @@ constexpr GLuint history_binding = 11;
 constexpr GLuint history_key_binding = 19;
 constexpr GLint alpha_location = 29;  // uniform: the temporal blend weight
 
-constexpr const char* visibility_history = "ao-temporal";  // x: filtered, y: partial
+constexpr const char* visibility_history = "ao-temporal";  // filtered visibility
 constexpr const char* key_history = "ao-temporal-key";
 
 class AoTemporalPass final : public Pass {
@@ -41,8 +41,10 @@ public:
         height_ = frame.layout.internal_height;
         // Allocated together, so both pairs write the same slot each frame.
         // Float, not UNORM: the solid-angle visibility is signed (sao.frag).
+        // 32-bit: a running mean of up to DEEPGI_TEMPORAL_CAP frames moves by
+        // less than half a float16 step near 1, and would stop moving.
         HistoryPair& visibility =
-            frame.allocate_history(visibility_history, GL_RG16F, width_, height_);
+            frame.allocate_history(visibility_history, GL_R32F, width_, height_);
         HistoryPair& key = frame.allocate_history(key_history, GL_RGBA16F, width_, height_);
         for (int slot = 0; slot < 2; ++slot) {
             gl::Framebuffer& framebuffer = framebuffers_[slot];

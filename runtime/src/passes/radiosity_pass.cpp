@@ -24,16 +24,12 @@ constexpr GLuint history_binding = 15;
 constexpr GLuint history_key_binding = 19;
 constexpr GLuint radiance_binding = 21;
 constexpr GLuint prepared_normal_binding = 22;
-constexpr GLuint history_partial_binding = 23;
 // Uniform locations: the layer (both shaders), the temporal blend weight.
 constexpr GLint layer_location = 4;
 constexpr GLint alpha_location = 29;
 
 std::string history_name(int layer) {
     return fmt::format("radiosity-layer{}", layer);
-}
-std::string partial_name(int layer) {
-    return fmt::format("radiosity-partial-layer{}", layer);
 }
 std::string key_name(int layer) {
     return fmt::format("radiosity-key-layer{}", layer);
@@ -76,11 +72,11 @@ public:
             raw_[layer] = gl::create_texture_2d(GL_RGBA16F, width_, height_);
             label_texture(raw_[layer], name(), fmt::format("raw layer {}", layer));
             raw_framebuffers_[layer] = framebuffer_for(raw_[layer], "radiosity raw");
-            // Allocated together, so all pairs write the same slot each frame.
+            // Allocated together, so both pairs write the same slot each frame.
+            // RGBA32F: a running mean of up to DEEPGI_TEMPORAL_CAP frames moves
+            // by (raw - mean) / 256 per frame, under one float16 step.
             HistoryPair& irradiance =
-                frame.allocate_history(history_name(layer), GL_RGBA16F, width_, height_);
-            HistoryPair& partial =
-                frame.allocate_history(partial_name(layer), GL_RGBA16F, width_, height_);
+                frame.allocate_history(history_name(layer), GL_RGBA32F, width_, height_);
             HistoryPair& key = frame.allocate_history(key_name(layer), GL_RGBA16F, width_, height_);
             for (int slot = 0; slot < 2; ++slot) {
                 gl::Framebuffer& framebuffer = framebuffers_[layer][slot];
@@ -88,12 +84,9 @@ public:
                 glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0,
                                           irradiance.slots[slot].get(), 0);
                 glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1,
-                                          partial.slots[slot].get(), 0);
-                glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT2,
                                           key.slots[slot].get(), 0);
-                const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                          GL_COLOR_ATTACHMENT2};
-                glNamedFramebufferDrawBuffers(framebuffer.get(), 3, buffers);
+                const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+                glNamedFramebufferDrawBuffers(framebuffer.get(), 2, buffers);
                 gl::check_framebuffer(framebuffer, "radiosity temporal");
             }
         }
@@ -125,8 +118,6 @@ public:
             const HistoryPair& irradiance = frame.history(history_name(layer));
             glBindTextureUnit(raw_binding, raw_[layer].get());
             glBindTextureUnit(history_binding, irradiance.previous());
-            glBindTextureUnit(history_partial_binding,
-                              frame.history(partial_name(layer)).previous());
             glBindTextureUnit(history_key_binding, frame.history(key_name(layer)).previous());
             begin_fullscreen(framebuffers_[layer][irradiance.written_slot].get(), width_, height_);
             glProgramUniform1i(temporal, layer_location, layer);
@@ -164,7 +155,7 @@ private:
     gl::Program temporal_;
     gl::Texture raw_[DEEPGI_LAYER_COUNT];  // this frame's gather, before the temporal filter
     gl::Framebuffer raw_framebuffers_[DEEPGI_LAYER_COUNT];
-    gl::Framebuffer framebuffers_[DEEPGI_LAYER_COUNT][2];  // [layer][slot]: E, partial, key
+    gl::Framebuffer framebuffers_[DEEPGI_LAYER_COUNT][2];  // [layer][slot]: E, key
     GLuint written_[DEEPGI_LAYER_COUNT] = {};              // this frame's filtered E + confidence
     int width_ = 0;
     int height_ = 0;
