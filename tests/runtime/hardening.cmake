@@ -33,3 +33,9 @@ target_compile_definitions(deepgi_gltf_render_tests PRIVATE
   DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>" DEEPGI_SAMPLE_MODELS="${DEEPGI_SAMPLE_MODELS}")
 add_dependencies(deepgi_gltf_render_tests deepgi)
 catch_discover_tests(deepgi_gltf_render_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# ---- Hostile scene files, second corpus: the loader's own reads, special files, total work ----
+add_executable(deepgi_gltf_hostile_tests ${CMAKE_CURRENT_LIST_DIR}/gltf_hostile_test.cpp)
+target_link_libraries(deepgi_gltf_hostile_tests PRIVATE deepgi::scene spiral_catch_main fmt::fmt
+                                                        PkgConfig::DEEPGI_TEST_STB)
+catch_discover_tests(deepgi_gltf_hostile_tests PROPERTIES LABELS runtime TIMEOUT 120)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <limits>
 
 namespace deepgi::gltf {
 
@@ -77,6 +78,38 @@ bool load_image_within_limits(tinygltf::Image* image, int image_index, std::stri
                               void* user_data) {
     auto& budget = *static_cast<ImageBudget*>(user_data);
     const SceneLimits& limits = *budget.limits;
+    // tinygltf hands an image stored in a buffer view over as the address of
+    // byte byteOffset with byteLength bytes, checking neither against the
+    // buffer: the view is proved inside its buffer here, and the decoder gets
+    // exactly its bytes.
+    if (image->bufferView >= 0) {
+        auto refuse = [&](const std::string& what) {
+            if (error) *error += fmt::format("image {}: {}. ", image_index, what);
+            return false;
+        };
+        const auto& model = *budget.model;
+        const std::size_t view_index = std::size_t(image->bufferView);
+        if (view_index >= model.bufferViews.size())
+            return refuse(fmt::format("buffer view {} does not exist", view_index));
+        const auto& view = model.bufferViews[view_index];
+        if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size())
+            return refuse(fmt::format("buffer view {} names a missing buffer", view_index));
+        const auto& buffer = model.buffers[std::size_t(view.buffer)];
+        std::size_t end = 0;
+        if (__builtin_add_overflow(view.byteOffset, view.byteLength, &end) ||
+            end > buffer.data.size())
+            return refuse(fmt::format(
+                "buffer view {} (byteOffset {}, byteLength {}) runs past its buffer's {} bytes",
+                view_index, view.byteOffset, view.byteLength, buffer.data.size()));
+        if (view.byteLength > std::size_t(std::numeric_limits<int>::max()))
+            return refuse(fmt::format("buffer view {} is larger than 2 GiB", view_index));
+        bytes = buffer.data.data() + view.byteOffset;
+        size = int(view.byteLength);
+    }
+    if (bytes == nullptr || size <= 0) {
+        if (error) *error += fmt::format("image {} is empty. ", image_index);
+        return false;
+    }
     int width = 0;
     int height = 0;
     int components = 0;

@@ -75,6 +75,12 @@ std::uint64_t json_depth(std::string_view text, std::uint64_t limit);
 // The JSON text of a .gltf file, or the JSON chunk of a .glb file.
 std::string_view json_text(std::span<const std::uint8_t> bytes, bool binary);
 
+// The first external URI in the JSON text (a "uri" member that is not a
+// data: URI) whose percent-escapes are malformed or decode to NUL, described;
+// "" when there is none. tinygltf decodes "%zz" to a NUL byte and keeps a
+// trailing "%" as it is, so a URI must be checked before it names a file.
+std::string malformed_uri(std::string_view json);
+
 enum class GltfKind { none, json, binary };
 
 // What the bytes are, by content (not by the file's name).
@@ -85,8 +91,11 @@ std::uint64_t parse_limit_value(std::string_view name, std::string_view text);
 
 // tinygltf's image callback: checks each image's size from its header before
 // decoding, against the texture limits. `user_data` is an ImageBudget.
+// `model` is the model being parsed: its buffers and views are complete when
+// the images are read, and an image stored in a view is checked against them.
 struct ImageBudget {
     const SceneLimits* limits = nullptr;
+    const tinygltf::Model* model = nullptr;
     std::uint64_t decoded_bytes = 0;
 };
 bool load_image_within_limits(tinygltf::Image* image, int image_index, std::string* error,

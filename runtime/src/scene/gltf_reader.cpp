@@ -4,6 +4,7 @@
 #include "gltf_internal.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstring>
 
@@ -13,7 +14,15 @@ std::string one_line(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');
     std::replace(text.begin(), text.end(), '\r', ' ');
     while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
+    // Other control bytes (a NUL from a decoded URI) are written visibly.
+    std::string visible;
+    for (const char c : text) {
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+            visible += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+        else
+            visible += c;
+    }
+    return visible;
 }
 
 std::function<float(std::size_t, int)> GltfReader::accessor_reader(
@@ -22,6 +31,11 @@ std::function<float(std::size_t, int)> GltfReader::accessor_reader(
     if (accessor_index < 0 || accessor_index >= int(model_.accessors.size()))
         fail("accessor index out of range");
     const auto& accessor = model_.accessors[std::size_t(accessor_index)];
+    // Valid glTF, but its values replace elements of the base view: reading
+    // the view alone would draw the wrong geometry without a word.
+    if (accessor.sparse.isSparse)
+        fail(fmt::format("accessor {} is sparse; sparse accessors are not supported",
+                         accessor_index));
     const int components =
         tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
     if (components != expected_components)
@@ -162,6 +176,47 @@ std::uint64_t json_depth(std::string_view text, std::uint64_t limit) {
     return deepest;
 }
 
+std::string malformed_uri(std::string_view json) {
+    // The string starting at the quote json[at], raw (escapes kept); `at`
+    // ends on its closing quote.
+    auto string_at = [&](std::size_t& at) {
+        const std::size_t begin = ++at;
+        while (at < json.size() && json[at] != '"') at += json[at] == '\\' ? 2 : 1;
+        return json.substr(begin, std::min(at, json.size()) - begin);
+    };
+    auto skip_blanks = [&](std::size_t& at) {
+        while (at < json.size() && std::isspace(static_cast<unsigned char>(json[at]))) ++at;
+    };
+    auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+    for (std::size_t i = 0; i < json.size(); ++i) {
+        if (json[i] != '"') continue;
+        if (string_at(i) != "uri") continue;
+        std::size_t at = i + 1;
+        skip_blanks(at);
+        if (at >= json.size() || json[at] != ':') continue;
+        ++at;
+        skip_blanks(at);
+        if (at >= json.size() || json[at] != '"') continue;
+        const std::string_view uri = string_at(at);
+        i = at;
+        if (uri.substr(0, 5) == "data:") continue;
+        for (std::size_t k = 0; k < uri.size(); ++k) {
+            if (uri[k] != '%') continue;
+            if (k + 2 >= uri.size())
+                return fmt::format("URI '{}' ends in an incomplete percent-escape",
+                                   one_line(std::string(uri)));
+            if (!hex(uri[k + 1]) || !hex(uri[k + 2]))
+                return fmt::format("URI '{}' has a malformed percent-escape '{}'",
+                                   one_line(std::string(uri)), uri.substr(k, 3));
+            if (uri[k + 1] == '0' && uri[k + 2] == '0')
+                return fmt::format("URI '{}' has the percent-escape %00 (NUL)",
+                                   one_line(std::string(uri)));
+            k += 2;
+        }
+    }
+    return "";
+}
+
 static std::uint32_t read_u32_le(const std::uint8_t* p) {
     return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
            std::uint32_t(p[3]) << 24;
@@ -205,22 +260,25 @@ void set_scene_limit(SceneLimits& limits, std::string_view assignment) {
     const std::string_view name = assignment.substr(0, equals);
     const std::string_view value =
         equals == std::string_view::npos ? std::string_view() : assignment.substr(equals + 1);
+    struct Named {
+        std::string_view name;
+        std::uint64_t* value;
+    };
+    const Named all[] = {
+        {"json-depth", &limits.json_depth},         {"node-visits", &limits.node_visits},
+        {"triangles", &limits.triangles},           {"texture-side", &limits.texture_side},
+        {"texture-bytes", &limits.texture_bytes},   {"instances", &limits.instances},
+        {"geometry-bytes", &limits.geometry_bytes}, {"load-seconds", &limits.load_seconds},
+        {"file-bytes", &limits.file_bytes}};
     std::uint64_t* target = nullptr;
-    if (name == "json-depth")
-        target = &limits.json_depth;
-    else if (name == "node-visits")
-        target = &limits.node_visits;
-    else if (name == "triangles")
-        target = &limits.triangles;
-    else if (name == "texture-side")
-        target = &limits.texture_side;
-    else if (name == "texture-bytes")
-        target = &limits.texture_bytes;
+    std::string names;
+    for (const auto& named : all) {
+        if (named.name == name) target = named.value;
+        names += fmt::format("{}{}", names.empty() ? "" : ", ", named.name);
+    }
     if (target == nullptr || equals == std::string_view::npos)
-        throw InputError(fmt::format(
-            "--scene-limit '{}' is not NAME=VALUE with NAME one of json-depth, node-visits, "
-            "triangles, texture-side, texture-bytes",
-            assignment));
+        throw InputError(fmt::format("--scene-limit '{}' is not NAME=VALUE with NAME one of {}",
+                                     assignment, names));
     *target = gltf::parse_limit_value(name, value);
 }
 

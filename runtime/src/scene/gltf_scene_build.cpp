@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -112,6 +113,15 @@ std::string ignored_summary(const tinygltf::Model& model, std::uint64_t orthogra
     return line;
 }
 
+// True when every component is a finite float: a finite double such as
+// 1e300 becomes infinity when converted, and renders black.
+template <typename Vector>
+bool finite_floats(const Vector& v) {
+    for (int i = 0; i < Vector::length(); ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
 // The state of one build: the scene so far and what the warnings count.
 // One member function per job; build_scene calls them in order.
 struct SceneAssembly {
@@ -133,7 +143,10 @@ struct SceneAssembly {
     bool have_key_light = false;
     std::vector<std::string> dropped_lights;
     std::uint64_t visits = 0;
+    std::uint64_t instances = 0;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
+    void check_time() const;
     void add_primitive(const tinygltf::Primitive& primitive, const glm::mat4& transform);
     void add_camera(int camera_index, const std::string& node_name, const glm::mat4& transform);
     void add_light(int light_index, const glm::mat4& transform);
@@ -144,8 +157,28 @@ struct SceneAssembly {
     void finish();
 };
 
+// The node-visit and triangle limits bound each kind of work; the clock
+// bounds their sum (a fan-out of shared nodes stays under both and still
+// takes minutes).
+void SceneAssembly::check_time() const {
+    const auto limit = std::chrono::seconds(std::min<std::uint64_t>(limits.load_seconds, 1u << 30));
+    if (std::chrono::steady_clock::now() - start > limit)
+        reader.fail(
+            fmt::format("flattening the node graph took more than {} s (raise with --scene-limit "
+                        "load-seconds=N)",
+                        limits.load_seconds));
+}
+
 void SceneAssembly::add_primitive(const tinygltf::Primitive& primitive,
                                   const glm::mat4& transform) {
+    // Each placement of a primitive costs its accessors' setup whatever its
+    // size, so placements are counted on their own.
+    if (++instances > limits.instances)
+        reader.fail(fmt::format(
+            "the scene draws more than {} mesh primitive instances (raise with --scene-limit "
+            "instances=N)",
+            limits.instances));
+    check_time();
     const int mode = primitive.mode == -1 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
         mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
@@ -220,6 +253,13 @@ void SceneAssembly::add_primitive(const tinygltf::Primitive& primitive,
             fmt::format("the scene instantiates more than {} triangles (raise with --scene-limit "
                         "triangles=N)",
                         limits.triangles));
+    // Every triangle becomes 3 vertices and 3 indices (flat, after instancing).
+    const std::uint64_t triangle_bytes = 3 * (sizeof(Vertex) + sizeof(std::uint32_t));
+    if (triangles > limits.geometry_bytes / triangle_bytes)
+        reader.fail(fmt::format(
+            "the scene's geometry after instancing needs more than {} bytes ({} per triangle; "
+            "raise with --scene-limit geometry-bytes=N)",
+            limits.geometry_bytes, triangle_bytes));
     for (auto index : local_indices) {
         if (index >= vertex_count) reader.fail("an index refers past the end of the vertices");
     }
@@ -298,6 +338,13 @@ void SceneAssembly::add_camera(int camera_index, const std::string& node_name,
     if (!(yfov > 0.0 && yfov < 3.14159) || !(znear > 0.0) || !std::isfinite(znear))
         reader.fail(
             fmt::format("camera {}: yfov must lie in (0, pi) and znear be > 0", camera_index));
+    // The renderer works in float: 1e-300 becomes 0 and 1e39 infinity, and
+    // the projection divides by tan(yfov / 2).
+    if (!std::isnormal(float(yfov)) || !std::isfinite(1.0f / std::tan(float(yfov) * 0.5f)) ||
+        !std::isnormal(float(znear)))
+        reader.fail(
+            fmt::format("camera {}: yfov {} or znear {} is outside the renderer's float range",
+                        camera_index, yfov, znear));
     const glm::vec3 f = forward / forward_length;
     FileCamera file_camera;
     file_camera.index = camera_index;
@@ -348,6 +395,18 @@ void SceneAssembly::add_light(int light_index, const glm::mat4& transform) {
     key.colour = light.color.size() == 3 ? glm::vec3(light.color[0], light.color[1], light.color[2])
                                          : glm::vec3(1.0f);
     key.intensity = float(light.intensity / 683.0);
+    // Checked as the renderer uses them, in float and multiplied together.
+    if (!finite_floats(key.colour) || key.colour.r < 0.0f || key.colour.g < 0.0f ||
+        key.colour.b < 0.0f || !std::isfinite(key.intensity) ||
+        !finite_floats(key.colour * key.intensity))
+        reader.fail(fmt::format(
+            "light {}: colour x intensity must be >= 0 and finite as float (colour {}, "
+            "intensity {})",
+            light_index,
+            light.color.size() == 3
+                ? fmt::format("[{}, {}, {}]", light.color[0], light.color[1], light.color[2])
+                : std::string("default"),
+            light.intensity));
     if (key.kind == LightKind::spot) {
         const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
         if (!(inner >= 0.0 && inner < outer && outer <= 1.5707963268))
@@ -360,6 +419,9 @@ void SceneAssembly::add_light(int light_index, const glm::mat4& transform) {
         if (!(light.range > 0.0) || !std::isfinite(light.range))
             reader.fail(fmt::format("light {}: range must be a finite number > 0", light_index));
         key.range = float(light.range);
+        if (!std::isfinite(key.range))
+            reader.fail(
+                fmt::format("light {}: range {} overflows a float", light_index, light.range));
     }
     scene.key_light = key;
     have_key_light = true;
@@ -371,6 +433,7 @@ void SceneAssembly::visit(int node_index, const glm::mat4& parent, int depth) {
     if (node_index < 0 || node_index >= int(model.nodes.size()))
         reader.fail("node index out of range");
     if (depth > 64) reader.fail("node hierarchy is too deep (cycle?)");
+    check_time();
     if (++visits > limits.node_visits)
         reader.fail(
             fmt::format("the node graph expands to more than {} node visits (nodes shared by "
@@ -472,6 +535,10 @@ void SceneAssembly::add_materials() {
                                     material_index));
                 material.emissive *= float(strength);
             }
+            if (!finite_floats(material.base_colour) || !finite_floats(material.emissive))
+                reader.fail(fmt::format(
+                    "material {}: base colour or emissive (factor x strength) overflows a float",
+                    material_index));
             if (source.alphaMode == "BLEND") {
                 ++blended_materials;
             } else if (source.alphaMode == "MASK") {
