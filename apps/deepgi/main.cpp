@@ -62,6 +62,7 @@ struct Options {
 };
 
 void check_output_path(const fs::path& output) {
+    if (output == "-") return;  // the PNG goes to standard output
     std::string extension = output.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });

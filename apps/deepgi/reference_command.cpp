@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <spiral/fileio.hpp>
 #include <unistd.h>
 
 #include <algorithm>
@@ -64,6 +65,9 @@ int run(const ReferenceOptions& options) {
     settings.render.height = size.height;
     if (options.output.empty()) throw deepgi::InputError("reference needs --output DIR");
     if (options.rays < 1) throw deepgi::InputError("--rays must be at least 1");
+    if (options.threads < 0 || options.threads > 1024)
+        throw deepgi::InputError(
+            fmt::format("--threads {} must lie in [0, 1024] (0: all)", options.threads));
     // The renderer's settings the reference shares, checked by their rows.
     deepgi::check_setting(row("ao-radius"), options.radius);
     deepgi::check_setting(row("guard-band"), options.guard_band);
@@ -79,12 +83,10 @@ int run(const ReferenceOptions& options) {
     if (options.no_ao && options.no_irradiance)
         throw deepgi::InputError("--no-ao and --no-irradiance leave nothing to trace");
     const fs::path output = options.output;
-    if (fs::exists(output) && !fs::is_directory(output))
-        throw deepgi::InputError(fmt::format("--output '{}' is not a directory", output.string()));
-    const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
-    if (!fs::is_directory(parent))
-        throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist",
-                                             output.string(), parent.string()));
+    // Written as one set, like --dump: checked before any ray is traced, the
+    // images appear together or not at all (a previous set of PFM images is
+    // replaced whole; a folder holding anything else is refused).
+    spiral::fileio::check_directory_target(output, ".pfm");
 
     settings.render.guard_band_fraction = options.guard_band;
     settings.render.min_separation = options.min_separation;
@@ -122,16 +124,29 @@ int run(const ReferenceOptions& options) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    fs::create_directories(output);
-    deepgi::write_pfm(output / "reference-depth-layer0.pfm", images.depth_layer0);
-    deepgi::write_pfm(output / "reference-depth-layer1.pfm", images.depth_layer1);
+    spiral::fileio::AtomicDirectory set(output, ".pfm");
+    auto write = [&](const char* name, const deepgi::FloatImage& image) {
+        const std::vector<std::uint8_t> bytes = deepgi::encode_pfm(image);
+        set.write_file(name, bytes.data(), bytes.size());
+    };
+    write("reference-depth-layer0.pfm", images.depth_layer0);
+    write("reference-depth-layer1.pfm", images.depth_layer1);
     if (settings.ambient_visibility) {
-        deepgi::write_pfm(output / "reference-ao-visibility.pfm", images.ambient_visibility);
-        deepgi::write_pfm(output / "reference-ao-hit-visibility.pfm", images.hit_visibility);
-        deepgi::write_pfm(output / "reference-ao-occlusion-split.pfm", images.occlusion_split);
-        deepgi::write_pfm(output / "reference-ao-standard-error.pfm", images.standard_error);
-        deepgi::write_pfm(output / "reference-ao-rays.pfm", images.rays);
+        write("reference-ao-visibility.pfm", images.ambient_visibility);
+        write("reference-ao-hit-visibility.pfm", images.hit_visibility);
+        write("reference-ao-occlusion-split.pfm", images.occlusion_split);
+        write("reference-ao-standard-error.pfm", images.standard_error);
+        write("reference-ao-rays.pfm", images.rays);
+    }
+    if (settings.irradiance) {
+        write("reference-irradiance.pfm", images.irradiance);
+        write("reference-irradiance-standard-error.pfm", images.irradiance_standard_error);
+        write("reference-irradiance-rays.pfm", images.irradiance_rays);
+        write("reference-direct-radiance.pfm", images.direct_radiance);
+    }
+    set.commit();
 
+    if (settings.ambient_visibility) {
         double max_error = 0.0, ray_total = 0.0;
         long long surface = 0, above = 0;
         for (std::size_t i = 0; i < images.standard_error.pixels.size(); ++i) {
@@ -147,11 +162,6 @@ int run(const ReferenceOptions& options) {
             surface, surface ? ray_total / double(surface) : 0.0, max_error, above, seconds);
     }
     if (settings.irradiance) {
-        deepgi::write_pfm(output / "reference-irradiance.pfm", images.irradiance);
-        deepgi::write_pfm(output / "reference-irradiance-standard-error.pfm",
-                          images.irradiance_standard_error);
-        deepgi::write_pfm(output / "reference-irradiance-rays.pfm", images.irradiance_rays);
-        deepgi::write_pfm(output / "reference-direct-radiance.pfm", images.direct_radiance);
         // Errors relative to each pixel's E, over pixels that receive light;
         // the largest channel's standard error per pixel against 0.005.
         double ray_total = 0.0, mean_e = 0.0, mean_error = 0.0, max_relative = 0.0;

@@ -96,6 +96,11 @@ void check_file_target(const std::filesystem::path& target);
 void check_directory_target(const std::filesystem::path& target,
                             std::string_view replaceable_extension = {});
 
+// Flushes and closes standard output, checking both: a program's printed
+// output is an output like any other. Throws WriteError (a full disk, a
+// closed descriptor, a broken pipe with SIGPIPE ignored). Call once, last.
+void close_standard_output();
+
 // For tests: the number of temporaries registered for signal cleanup now.
 int pending_temporaries();
 
