@@ -184,8 +184,8 @@ int main(int argc, char** argv) {
     app.add_option("--scene", options.scene, "cornell, atrium, warehouse, or a .gltf/.glb file");
     app.add_option("--scene-limit", options.scene_limits,
                    "Raise a scene file limit (also for files dropped onto the window), NAME=VALUE: "
-                   "json-depth, node-visits, "
-                   "triangles, texture-side, texture-bytes (docs/hardening.md)");
+                   "json-depth, node-visits, triangles, instances, geometry-bytes, "
+                   "load-seconds, texture-side, texture-bytes, file-bytes (docs/hardening.md)");
     app.add_option(
         "--size", options.size,
         fmt::format("Image size WIDTHxHEIGHT (1 to {} per side)", deepgi::limits::max_image_side));

@@ -22,7 +22,7 @@ void save(const std::filesystem::path& path, const std::string& bytes) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) return 2;
+    if (argc != 2 && argc != 3) return 2;
     const std::filesystem::path dir(argv[1]);
     std::filesystem::create_directories(dir);
     save(dir / "valid-triangle.gltf", triangle_gltf({}));
@@ -121,5 +121,34 @@ int main(int argc, char** argv) {
     sparse.position_fields =
         R"("count":3,"sparse":{"count":1,"indices":{"bufferView":1,"componentType":5125},"values":{"bufferView":0}})";
     save(dir / "sparse-accessor.gltf", triangle_gltf(sparse));
+
+    // The image fuzzer's seeds (make_corpus <gltf dir> <image dir>): a layout
+    // byte (0: the view is exact, 1..5: it runs past the buffer in some way),
+    // then the image file.
+    if (argc == 3) {
+        const std::filesystem::path images(argv[2]);
+        std::filesystem::create_directories(images);
+        auto image_seed = [&](const std::string& name, std::uint8_t layout,
+                              const std::vector<std::uint8_t>& bytes) {
+            std::string seed(1, char(layout));
+            seed.append(bytes.begin(), bytes.end());
+            save(images / name, seed);
+        };
+        image_seed("png-2x2", 0, png);
+        for (std::uint8_t layout = 1; layout < 6; ++layout)
+            image_seed(fmt::format("png-2x2-layout-{}", layout), layout, png);
+        image_seed("png-truncated", 0, truncated);
+        image_seed("png-header-16384", 0, png_header(16384, 16384));
+        std::vector<std::uint8_t> jpeg;
+        stbi_write_jpg_to_func(
+            [](void* c, void* d, int n) {
+                auto& o = *static_cast<std::vector<std::uint8_t>*>(c);
+                o.insert(o.end(), static_cast<std::uint8_t*>(d), static_cast<std::uint8_t*>(d) + n);
+            },
+            &jpeg, 2, 2, 4, rgba.data(), 90);
+        image_seed("jpeg-2x2", 0, jpeg);
+        const std::vector<std::uint8_t> jpeg_truncated(jpeg.begin(), jpeg.begin() + std::ptrdiff_t(jpeg.size() / 2));
+        image_seed("jpeg-truncated", 0, jpeg_truncated);
+    }
     return 0;
 }
