@@ -147,7 +147,8 @@ int main(int argc, char** argv) {
             },
             &jpeg, 2, 2, 4, rgba.data(), 90);
         image_seed("jpeg-2x2", 0, jpeg);
-        const std::vector<std::uint8_t> jpeg_truncated(jpeg.begin(), jpeg.begin() + std::ptrdiff_t(jpeg.size() / 2));
+        const std::vector<std::uint8_t> jpeg_truncated(
+            jpeg.begin(), jpeg.begin() + std::ptrdiff_t(jpeg.size() / 2));
         image_seed("jpeg-truncated", 0, jpeg_truncated);
     }
     return 0;
