@@ -67,6 +67,7 @@ struct Options {
 };
 
 void check_output_path(const fs::path& output) {
+    if (output == "-") return;  // the PNG goes to standard output
     std::string extension = output.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -202,8 +203,8 @@ int main(int argc, char** argv) {
                    "A built-in scene (listed at the end) or a .gltf/.glb file");
     app.add_option("--scene-limit", options.scene_limits,
                    "Raise a scene file limit (also for files dropped onto the window), NAME=VALUE: "
-                   "json-depth, node-visits, "
-                   "triangles, texture-side, texture-bytes (docs/hardening.md)")
+                   "json-depth, node-visits, triangles, instances, geometry-bytes, "
+                   "load-seconds, texture-side, texture-bytes, file-bytes (docs/hardening.md)")
         ->default_str("the limits in docs/hardening.md");
     app.add_option("--size", options.size,
                    fmt::format("Image size WIDTHxHEIGHT in pixels (1 to {} per side)",

@@ -71,6 +71,9 @@ int run(const ReferenceOptions& options) {
     settings.render.height = size.height;
     if (options.output.empty()) throw deepgi::InputError("reference needs --output DIR");
     if (options.rays < 1) throw deepgi::InputError("--rays must be at least 1");
+    if (options.threads < 0 || options.threads > 1024)
+        throw deepgi::InputError(
+            fmt::format("--threads {} must lie in [0, 1024] (0: all)", options.threads));
     // The renderer's settings the reference shares, checked by their rows.
     deepgi::check_setting(row("guard-band"), options.guard_band);
     row("ao-radius")
@@ -91,12 +94,11 @@ int run(const ReferenceOptions& options) {
     if (options.no_ao && options.no_irradiance)
         throw deepgi::InputError("--no-ao and --no-irradiance leave nothing to trace");
     const fs::path output = options.output;
-    if (fs::exists(output) && !fs::is_directory(output))
-        throw deepgi::InputError(fmt::format("--output '{}' is not a directory", output.string()));
-    const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
-    if (!fs::is_directory(parent))
-        throw deepgi::InputError(fmt::format("--output '{}': directory '{}' does not exist",
-                                             output.string(), parent.string()));
+    // Written as one set, like --dump: checked before any ray is traced, the
+    // images and their previews appear together or not at all (a previous set
+    // of PFM images and PNG previews is replaced whole; a folder holding
+    // anything else is refused).
+    spiral::fileio::check_directory_target(output, ".pfm .png");
 
     settings.render.guard_band_fraction = options.guard_band;
     settings.rays.max_rays = options.rays;
@@ -177,20 +179,15 @@ int run(const ReferenceOptions& options) {
              {"reference-irradiance-rays", &images.irradiance_rays, PreviewMapping::normalised},
              {"reference-direct-radiance", &images.direct_radiance, PreviewMapping::radiance}});
     }
-    fs::create_directories(output);
-    std::vector<std::unique_ptr<spiral::fileio::AtomicFile>> files;
+    spiral::fileio::AtomicDirectory set(output, ".pfm .png");
     for (const Output& entry : outputs) {
         const auto pfm = deepgi::encode_pfm(*entry.image);
-        files.push_back(std::make_unique<spiral::fileio::AtomicFile>(
-            output / (std::string(entry.name) + ".pfm")));
-        files.back()->write(pfm.data(), pfm.size());
+        set.write_file(std::string(entry.name) + ".pfm", pfm.data(), pfm.size());
         const auto png = deepgi::encode_png(entry.image->width, entry.image->height,
                                             deepgi_app::preview_rgba8(*entry.image, entry.preview));
-        files.push_back(std::make_unique<spiral::fileio::AtomicFile>(
-            output / (std::string(entry.name) + ".png")));
-        files.back()->write(png.data(), png.size());
+        set.write_file(std::string(entry.name) + ".png", png.data(), png.size());
     }
-    for (auto& file : files) file->commit();
+    set.commit();
 
     if (settings.ambient_visibility) {
         double max_error = 0.0, ray_total = 0.0;

@@ -3,7 +3,9 @@
 #include <string>
 
 #include <fmt/core.h>
+#include <spiral/fileio.hpp>
 
+#include "../strict_numbers.hpp"
 #include "commands.hpp"
 #include "help_formatter.hpp"
 
@@ -14,7 +16,14 @@ int fail(std::string message) {
     for (char& c : message)
         if (c == '\n' || c == '\r') c = ' ';
     while (!message.empty() && message.back() == ' ') message.pop_back();
-    fmt::print(stderr, "spiralgen: error: {}\n", message);
+    std::string line;
+    for (const char c : message) {
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+            line += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+        else
+            line += c;
+    }
+    fmt::print(stderr, "spiralgen: error: {}\n", line);
     return 2;
 }
 
@@ -31,9 +40,13 @@ int main(int argc, char** argv) {
     spiralgen::add_discrepancy_command(app);
     spiralgen::add_header_command(app);
     spiralgen::add_blur_command(app);
+    spiral_cli::require_plain_numbers(app);
 
     try {
         app.parse(argc, argv);
+        // Standard output is an output like any other (a full disk, a closed
+        // pipe with SIGPIPE ignored): checked before exit 0.
+        spiral::fileio::close_standard_output();
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {

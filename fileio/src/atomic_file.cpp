@@ -178,6 +178,18 @@ AtomicFile::AtomicFile(const fs::path& target) : target_(target) {
         direct_ = true;
         return;
     }
+    // A special file reached through links (/dev/stdout is a link to
+    // /proc/self/fd/1, whose target "pipe:[1234]" is no path) is opened
+    // through the kernel's own resolution and written in place.
+    if (struct stat through{};
+        ::stat(target.c_str(), &through) == 0 &&
+        (S_ISCHR(through.st_mode) || S_ISFIFO(through.st_mode) || S_ISSOCK(through.st_mode))) {
+        destination_ = target;
+        fd_ = ::open(target.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+        if (fd_ < 0) fail(errno_text(errno));
+        direct_ = true;
+        return;
+    }
     destination_ = follow_links(target, target);
     struct stat info {};
     const bool exists = ::stat(destination_.c_str(), &info) == 0;
@@ -285,15 +297,27 @@ void write_file_atomically(const fs::path& path, std::string_view contents) {
 namespace {
 
 // True when every entry is a regular file named *`extension`.
-bool holds_only(const fs::path& directory, std::string_view extension) {
-    if (extension.empty()) return false;
+// `extensions`: one or more endings separated by spaces (".pfm .png").
+bool holds_only(const fs::path& directory, std::string_view extensions) {
+    if (extensions.empty()) return false;
+    auto has_listed_ending = [&](const std::string& name) {
+        std::size_t start = 0;
+        while (start < extensions.size()) {
+            std::size_t end = extensions.find(' ', start);
+            if (end == std::string_view::npos) end = extensions.size();
+            const std::string_view ending = extensions.substr(start, end - start);
+            if (!ending.empty() && name.size() > ending.size() &&
+                name.compare(name.size() - ending.size(), ending.size(), ending) == 0)
+                return true;
+            start = end + 1;
+        }
+        return false;
+    };
     std::error_code error;
     for (fs::directory_iterator it(directory, error), end; !error && it != end;
          it.increment(error)) {
         const std::string name = it->path().filename().string();
-        if (it->symlink_status(error).type() != fs::file_type::regular ||
-            name.size() <= extension.size() ||
-            name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+        if (it->symlink_status(error).type() != fs::file_type::regular || !has_listed_ending(name))
             return false;
     }
     return !error;
@@ -352,10 +376,10 @@ void check_file_target(const fs::path& target) {
         AtomicFile probe(target);  // "-" creates nothing; "" throws
         return;
     }
-    const fs::path destination = follow_links(target, target);
+    const fs::path destination = target;
     struct stat info {};
     if (::stat(destination.c_str(), &info) == 0 &&
-        (S_ISCHR(info.st_mode) || S_ISFIFO(info.st_mode))) {
+        (S_ISCHR(info.st_mode) || S_ISFIFO(info.st_mode) || S_ISSOCK(info.st_mode))) {
         // Not opened now: opening a FIFO early would block, and closing it
         // would show its reader an end of file.
         if (::faccessat(AT_FDCWD, destination.c_str(), W_OK, AT_EACCESS) != 0)
@@ -476,6 +500,20 @@ void AtomicDirectory::commit() {
     slot_ = -1;
     committed_ = true;
     sync_directory(directory_of(without_trailing_slash(target_)));
+}
+
+void close_standard_output() {
+    // stdio buffers: a full disk, a closed descriptor or a broken pipe with
+    // SIGPIPE ignored shows only here, after every print "succeeded".
+    errno = 0;
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0)
+        throw WriteError(fmt::format("cannot write to standard output: {}",
+                                     errno_text(errno != 0 ? errno : EIO)));
+    // Closing reports what the file system defers (NFS, quotas); a
+    // descriptor closed before the program started, with nothing written to
+    // it, is no failure.
+    if (std::fclose(stdout) != 0 && errno != EBADF)
+        throw WriteError(fmt::format("cannot write to standard output: {}", errno_text(errno)));
 }
 
 }  // namespace spiral::fileio

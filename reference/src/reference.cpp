@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <system_error>
 #include <thread>
 
 namespace deepgi {
@@ -106,20 +107,28 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
     std::vector<glm::vec3> positions(pixels), normals(pixels);
     std::vector<RayScene::Hit> first_hits(pixels);
 
-    const int thread_count = settings.threads > 0
-                                 ? settings.threads
-                                 : int(std::max(1u, std::thread::hardware_concurrency()));
+    // More workers than rows would idle; the count is also what the system
+    // grants: a thread that cannot be created leaves the work to the others.
+    const int thread_count =
+        std::min(h, settings.threads > 0 ? settings.threads
+                                         : int(std::max(1u, std::thread::hardware_concurrency())));
     auto parallel_rows = [&](auto&& row_work, bool report) {
         std::atomic<int> next_row{0};
         std::atomic<long long> done{0};
         std::vector<std::thread> workers;
+        auto work = [&] {
+            for (int y = next_row++; y < h; y = next_row++) {
+                row_work(y);
+                done += w;
+            }
+        };
         for (int i = 0; i < thread_count; ++i) {
-            workers.emplace_back([&] {
-                for (int y = next_row++; y < h; y = next_row++) {
-                    row_work(y);
-                    done += w;
-                }
-            });
+            try {
+                workers.emplace_back(work);
+            } catch (const std::system_error&) {
+                if (workers.empty()) throw;
+                break;
+            }
         }
         if (report && settings.progress) {
             while (done.load() < (long long)pixels) {

@@ -53,7 +53,9 @@ void validate(const ReportOptions& options) {
         throw InputError(fmt::format("--frames {} is out of range (1 to 1000)", options.frames));
     if (options.warmup < 0 || options.warmup > 1000)
         throw InputError(fmt::format("--warmup {} is out of range (0 to 1000)", options.warmup));
-    if (options.threads < 0) throw InputError("--threads must be >= 0");
+    if (options.threads < 0 || options.threads > 1024)
+        throw InputError(
+            fmt::format("--threads {} must lie in [0, 1024] (0: all)", options.threads));
     if (options.float_max_n < 0 || options.float_max_n > 4096)
         throw InputError(
             fmt::format("--float-max-n {} is out of range (0 to 4096)", options.float_max_n));

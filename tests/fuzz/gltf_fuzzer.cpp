@@ -20,6 +20,9 @@ bool gltf_fuzz_load(const std::uint8_t* data, std::size_t size) {
     limits.triangles = 200'000;
     limits.texture_side = 512;
     limits.texture_bytes = 16u << 20;
+    limits.instances = 5'000;
+    limits.geometry_bytes = 64u << 20;
+    limits.load_seconds = 5;
     const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
     try {
         const deepgi::Scene scene = deepgi::load_gltf_scene_from_memory(

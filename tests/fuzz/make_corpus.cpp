@@ -5,6 +5,7 @@
 
 #include <stb_image_write.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -18,29 +19,10 @@ void save(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;
 }
 
-// The JSON inside a GLB container, with the triangle's buffer as the binary
-// chunk instead of a data URI.
-std::string glb(const std::string& json, const std::vector<std::uint8_t>& binary) {
-    std::string padded_json = json;
-    while (padded_json.size() % 4) padded_json += ' ';
-    std::vector<std::uint8_t> bin = binary;
-    while (bin.size() % 4) bin.push_back(0);
-    std::vector<std::uint8_t> out;
-    const std::uint32_t total =
-        12 + 8 + std::uint32_t(padded_json.size()) + 8 + std::uint32_t(bin.size());
-    out.reserve(total);
-    for (std::uint32_t v : {0x46546c67u, 2u, total, std::uint32_t(padded_json.size()), 0x4e4f534au})
-        append(out, v);
-    out.insert(out.end(), padded_json.begin(), padded_json.end());
-    for (std::uint32_t v : {std::uint32_t(bin.size()), 0x004e4942u}) append(out, v);
-    out.insert(out.end(), bin.begin(), bin.end());
-    return std::string(out.begin(), out.end());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) return 2;
+    if (argc != 2 && argc != 3) return 2;
     const std::filesystem::path dir(argv[1]);
     std::filesystem::create_directories(dir);
     save(dir / "valid-triangle.gltf", triangle_gltf({}));
@@ -89,5 +71,85 @@ int main(int argc, char** argv) {
     save(dir / "dag-2-40.gltf", triangle_gltf(dag));
     textured.extra = image_members({png_header(16384, 16384)});
     save(dir / "png-16384.gltf", triangle_gltf(textured));
+
+    // Second hostile corpus: images in buffer views, GLB chunks, total work,
+    // float overflow and the specification's refusals.
+    save(dir / "valid-view-image.glb", textured_glb(png));
+    save(dir / "view-image-past-buffer.glb", textured_glb(png, 48, std::int64_t(png.size()) + 1));
+    save(dir / "view-image-offset-past-buffer.glb", textured_glb(png, 1 << 30, 16));
+    save(dir / "view-image-length-4g.glb", textured_glb(png, 48, std::int64_t(1) << 32));
+    const std::vector<std::uint8_t> truncated(png.begin(),
+                                              png.begin() + std::ptrdiff_t(png.size() / 2));
+    save(dir / "view-image-truncated-png.glb", textured_glb(truncated));
+    save(dir / "glb-empty-buffer.glb", textured_glb(png, 48, -1, 0));
+    {
+        std::string file = textured_glb(png);
+        const std::size_t bin_header =
+            20 + (std::size_t(std::uint8_t(file[12])) | std::size_t(std::uint8_t(file[13])) << 8);
+        std::uint32_t length = 0;
+        std::memcpy(&length, file.data() + bin_header, 4);
+        length += 4;
+        std::memcpy(file.data() + bin_header, &length, 4);
+        save(dir / "glb-bin-chunk-past-end.glb", file);
+    }
+    TriangleFile fan;
+    fan.nodes = fan_out_nodes(150);
+    save(dir / "fan-out-150.gltf", triangle_gltf(fan));
+    TriangleFile light;
+    light.nodes =
+        R"([{"mesh":0,"children":[1]},{"extensions":{"KHR_lights_punctual":{"light":0}}}])";
+    light.extra =
+        R"(,"extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"directional","intensity":1e300}]}})";
+    save(dir / "light-intensity-1e300.gltf", triangle_gltf(light));
+    TriangleFile camera;
+    camera.nodes = R"([{"mesh":0,"children":[1]},{"camera":0}])";
+    camera.extra = R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":1e39}}])";
+    save(dir / "camera-znear-1e39.gltf", triangle_gltf(camera));
+    TriangleFile emissive;
+    emissive.primitive_extra = R"(,"material":0)";
+    emissive.extra =
+        R"(,"materials":[{"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":1e300}}}])";
+    save(dir / "emissive-strength-1e300.gltf", triangle_gltf(emissive));
+    TriangleFile draco;
+    draco.extra =
+        R"(,"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"])";
+    save(dir / "required-draco.gltf", triangle_gltf(draco));
+    std::string version3 = triangle_gltf({});
+    version3.replace(version3.find(R"("version":"2.0")"), 15, R"("version":"3.0")");
+    save(dir / "version-3.gltf", version3);
+    TriangleFile sparse;
+    sparse.position_fields =
+        R"("count":3,"sparse":{"count":1,"indices":{"bufferView":1,"componentType":5125},"values":{"bufferView":0}})";
+    save(dir / "sparse-accessor.gltf", triangle_gltf(sparse));
+
+    // The image fuzzer's seeds (make_corpus <gltf dir> <image dir>): a layout
+    // byte (0: the view is exact, 1..5: it runs past the buffer in some way),
+    // then the image file.
+    if (argc == 3) {
+        const std::filesystem::path images(argv[2]);
+        std::filesystem::create_directories(images);
+        auto image_seed = [&](const std::string& name, std::uint8_t layout,
+                              const std::vector<std::uint8_t>& bytes) {
+            std::string seed(1, char(layout));
+            seed.append(bytes.begin(), bytes.end());
+            save(images / name, seed);
+        };
+        image_seed("png-2x2", 0, png);
+        for (std::uint8_t layout = 1; layout < 6; ++layout)
+            image_seed(fmt::format("png-2x2-layout-{}", layout), layout, png);
+        image_seed("png-truncated", 0, truncated);
+        image_seed("png-header-16384", 0, png_header(16384, 16384));
+        std::vector<std::uint8_t> jpeg;
+        stbi_write_jpg_to_func(
+            [](void* c, void* d, int n) {
+                auto& o = *static_cast<std::vector<std::uint8_t>*>(c);
+                o.insert(o.end(), static_cast<std::uint8_t*>(d), static_cast<std::uint8_t*>(d) + n);
+            },
+            &jpeg, 2, 2, 4, rgba.data(), 90);
+        image_seed("jpeg-2x2", 0, jpeg);
+        const std::vector<std::uint8_t> jpeg_truncated(
+            jpeg.begin(), jpeg.begin() + std::ptrdiff_t(jpeg.size() / 2));
+        image_seed("jpeg-truncated", 0, jpeg_truncated);
+    }
     return 0;
 }

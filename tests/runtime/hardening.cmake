@@ -42,3 +42,17 @@ target_link_libraries(deepgi_scene_scale_tests PRIVATE deepgi::runtime spiral_ca
 target_compile_definitions(deepgi_scene_scale_tests PRIVATE
   DEEPGI_SAMPLE_MODELS="${DEEPGI_SAMPLE_MODELS}")
 catch_discover_tests(deepgi_scene_scale_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
+# ---- Hostile scene files, second corpus: the loader's own reads, special files, total work ----
+add_executable(deepgi_gltf_hostile_tests ${CMAKE_CURRENT_LIST_DIR}/gltf_hostile_test.cpp)
+target_link_libraries(deepgi_gltf_hostile_tests PRIVATE deepgi::scene spiral_catch_main fmt::fmt
+                                                        PkgConfig::DEEPGI_TEST_STB)
+catch_discover_tests(deepgi_gltf_hostile_tests PROPERTIES LABELS runtime TIMEOUT 120)
+
+# ---- Both command lines against the second corpus: paths, stdout, numbers ----
+add_executable(deepgi_cli_hostile_tests ${CMAKE_CURRENT_LIST_DIR}/cli_hostile_test.cpp)
+target_link_libraries(deepgi_cli_hostile_tests PRIVATE spiral_catch_main fmt::fmt)
+target_compile_definitions(deepgi_cli_hostile_tests PRIVATE
+  DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>" SPIRALGEN_EXECUTABLE="$<TARGET_FILE:spiralgen>")
+add_dependencies(deepgi_cli_hostile_tests deepgi spiralgen)
+catch_discover_tests(deepgi_cli_hostile_tests PROPERTIES LABELS runtime TIMEOUT 300)

@@ -161,11 +161,16 @@ TEST_CASE("gltf loader: node graphs that share children are bounded by visits an
     triangles.triangles = 1023;
     REQUIRE(contains(refusal(triangle_gltf(dag), triangles), "more than 1023 triangles"));
 
-    for (int levels : {20, 40}) {  // 2^20 and 2^40 instances: refused at the default limit
+    for (int levels : {20, 40}) {  // 2^20 and 2^40 instances: refused at the default limits
         dag.nodes = dag_nodes(levels);
         const std::string message = refusal(triangle_gltf(dag));
         INFO(message);
-        REQUIRE(contains(message, "node-visits"));
+        REQUIRE(contains(message, "instances"));  // 100,000 come before 1,000,000 visits
+        SceneLimits many_instances;
+        many_instances.instances = 1ull << 50;
+        const std::string visits_message = refusal(triangle_gltf(dag), many_instances);
+        INFO(visits_message);
+        REQUIRE(contains(visits_message, "node-visits"));
     }
 }
 

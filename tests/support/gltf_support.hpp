@@ -119,4 +119,62 @@ inline std::string image_members(const std::vector<std::vector<std::uint8_t>>& p
         images, textures);
 }
 
+// A GLB container: the JSON chunk (padded with spaces) and the binary chunk
+// (padded with zeros), lengths as the specification lays them out.
+inline std::string glb(const std::string& json, const std::vector<std::uint8_t>& binary) {
+    std::string padded_json = json;
+    while (padded_json.size() % 4) padded_json += ' ';
+    std::vector<std::uint8_t> bin = binary;
+    while (bin.size() % 4) bin.push_back(0);
+    std::vector<std::uint8_t> out;
+    const std::uint32_t total =
+        12 + 8 + std::uint32_t(padded_json.size()) + 8 + std::uint32_t(bin.size());
+    out.reserve(total);
+    for (std::uint32_t v : {0x46546c67u, 2u, total, std::uint32_t(padded_json.size()), 0x4e4f534au})
+        append(out, v);
+    out.insert(out.end(), padded_json.begin(), padded_json.end());
+    for (std::uint32_t v : {std::uint32_t(bin.size()), 0x004e4942u}) append(out, v);
+    out.insert(out.end(), bin.begin(), bin.end());
+    return std::string(out.begin(), out.end());
+}
+
+// The triangle as a GLB whose material's texture is `png`, stored in buffer
+// view 2 right after the triangle's 48 bytes. `view_offset` and
+// `view_length` (-1: the PNG's) set that view's fields, so a test can point it
+// past the buffer; `buffer_length` (-1: all the bytes) sets the buffer's.
+inline std::string textured_glb(const std::vector<std::uint8_t>& png, std::int64_t view_offset = 48,
+                                std::int64_t view_length = -1, std::int64_t buffer_length = -1) {
+    std::vector<std::uint8_t> bin;
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) append(bin, v);
+    for (std::uint32_t i : {0u, 1u, 2u}) append(bin, i);
+    bin.insert(bin.end(), png.begin(), png.end());
+    const std::string json = fmt::format(
+        R"({{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{}}}],)"
+        R"("bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":12}},)"
+        R"({{"buffer":0,"byteOffset":{},"byteLength":{}}}],)"
+        R"("accessors":[{{"bufferView":0,"componentType":5126,"type":"VEC3","count":3}},)"
+        R"({{"bufferView":1,"componentType":5125,"type":"SCALAR","count":3}}],)"
+        R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1,"material":0}}]}}],)"
+        R"("nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,)"
+        R"("images":[{{"bufferView":2,"mimeType":"image/png"}}],"textures":[{{"source":0}}],)"
+        R"("materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}]}})",
+        buffer_length >= 0 ? std::uint64_t(buffer_length) : bin.size(), view_offset,
+        view_length >= 0 ? std::uint64_t(view_length) : png.size());
+    return glb(json, bin);
+}
+
+// Nodes fanning out `fan` by `fan`: the root lists nodes 1..fan, each of
+// which lists all of nodes fan+1..2 fan, each holding the triangle's mesh.
+// fan^2 instances in 1 + fan + fan^2 visits, from O(fan^2) bytes of JSON.
+inline std::string fan_out_nodes(int fan) {
+    std::string layer;
+    for (int i = 0; i < fan; ++i) layer += fmt::format("{}{}", i ? "," : "", fan + 1 + i);
+    std::string nodes = "[{\"children\":[";
+    for (int i = 0; i < fan; ++i) nodes += fmt::format("{}{}", i ? "," : "", 1 + i);
+    nodes += "]}";
+    for (int i = 0; i < fan; ++i) nodes += ",{\"children\":[" + layer + "]}";
+    for (int i = 0; i < fan; ++i) nodes += R"(,{"mesh":0})";
+    return nodes + "]";
+}
+
 }  // namespace deepgi::test

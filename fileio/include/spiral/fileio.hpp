@@ -63,8 +63,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 // written into a private temporary directory beside `target` (mkdtemp), and
 // commit() syncs them and renames the directory into place. `target` must
 // not exist, or be an empty directory, or hold only regular files whose names
-// end in `replaceable_extension` (a previous set, swapped out whole and then
-// removed); anything else is refused before a file is written. Until commit the
+// end in `replaceable_extension` (one ending, or several separated by spaces:
+// ".pfm .png"; a previous set, swapped out whole and then removed); anything else is refused before a file is written. Until commit the
 // temporary directory and its files are removed by the destructor, by any
 // failure and by SIGINT or SIGTERM.
 class AtomicDirectory {
@@ -95,6 +95,11 @@ private:
 void check_file_target(const std::filesystem::path& target);
 void check_directory_target(const std::filesystem::path& target,
                             std::string_view replaceable_extension = {});
+
+// Flushes and closes standard output, checking both: a program's printed
+// output is an output like any other. Throws WriteError (a full disk, a
+// closed descriptor, a broken pipe with SIGPIPE ignored). Call once, last.
+void close_standard_output();
 
 // For tests: the number of temporaries registered for signal cleanup now.
 int pending_temporaries();

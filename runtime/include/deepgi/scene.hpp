@@ -137,15 +137,20 @@ Scene make_reference_scene(std::string_view name);
 // gigabytes. Each limit fails with a message naming it; raise it with
 // set_scene_limit (deepgi: --scene-limit NAME=VALUE). docs/hardening.md.
 struct SceneLimits {
-    std::uint64_t json_depth = 128;          // nesting of JSON arrays and objects
-    std::uint64_t node_visits = 1'000'000;   // nodes visited, counted once per path
-    std::uint64_t triangles = 10'000'000;    // triangles after instancing
-    std::uint64_t texture_side = 8192;       // pixels per side of one image
-    std::uint64_t texture_bytes = 1u << 30;  // decoded bytes of all images together
+    std::uint64_t json_depth = 128;             // nesting of JSON arrays and objects
+    std::uint64_t node_visits = 1'000'000;      // nodes visited, counted once per path
+    std::uint64_t triangles = 10'000'000;       // triangles after instancing
+    std::uint64_t texture_side = 8192;          // pixels per side of one image
+    std::uint64_t texture_bytes = 1u << 30;     // decoded bytes of all images together
+    std::uint64_t instances = 100'000;          // mesh primitives drawn, after instancing
+    std::uint64_t geometry_bytes = 2ull << 30;  // vertices and indices after instancing
+    std::uint64_t load_seconds = 60;            // wall time of flattening the node graph
+    std::uint64_t file_bytes = 2ull << 30;      // the scene file and its external files
 };
 
 // Sets one limit from "NAME=VALUE" (json-depth, node-visits, triangles,
-// texture-side, texture-bytes); throws InputError for anything else.
+// texture-side, texture-bytes, instances, geometry-bytes, load-seconds,
+// file-bytes); throws InputError for anything else.
 void set_scene_limit(SceneLimits& limits, std::string_view assignment);
 
 // glTF 2.0 (.gltf or .glb). Throws InputError for a missing, malformed,

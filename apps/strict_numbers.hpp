@@ -1,0 +1,63 @@
+#pragma once
+// Numbers on both programs' command lines are plain decimal text, whole: CLI11
+// alone reads an empty value as 0, "0x10" as 16, "-1" for an unsigned
+// option as its wrapped value and "4,,8" as a list with a 0 in it. Every
+// integer or floating-point option of an app and its subcommands gets this
+// check, so no option can forget it.
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <system_error>
+
+namespace spiral_cli {
+
+// "" when `text` is a plain number of the kind CLI11 names `type` (INT,
+// UINT, FLOAT), else why not; the value given is quoted as given.
+inline std::string plain_number_problem(const std::string& text, const std::string& type) {
+    const char* begin = text.data();
+    const char* end = text.data() + text.size();
+    if (text.empty()) return "an empty value is not a number";
+    std::errc error{};
+    const char* stop = begin;
+    if (type == "FLOAT") {
+        double value = 0;
+        const auto result = std::from_chars(begin, end, value, std::chars_format::general);
+        error = result.ec;
+        stop = result.ptr;
+        if (error == std::errc() && stop == end) return "";
+        if (error == std::errc::result_out_of_range)
+            return "'" + text + "' is out of range for a double";
+        return "'" + text + "' is not a decimal number";
+    }
+    const bool digits_only =
+        text.find_first_not_of("0123456789", text[0] == '-' ? 1 : 0) == std::string::npos &&
+        text != "-";
+    if (!digits_only) return "'" + text + "' is not a whole decimal number";
+    if (type == "UINT") {
+        if (text[0] == '-') return "'" + text + "' is negative; this option takes a count >= 0";
+        std::uint64_t value = 0;
+        const auto result = std::from_chars(begin, end, value);
+        error = result.ec;
+    } else {
+        std::int64_t value = 0;
+        const auto result = std::from_chars(begin, end, value);
+        error = result.ec;
+    }
+    if (error == std::errc::result_out_of_range)
+        return "'" + text + "' is out of range for a 64-bit integer";
+    return "";
+}
+
+inline void require_plain_numbers(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        const std::string type = option->get_type_name();
+        if (type != "INT" && type != "UINT" && type != "FLOAT") continue;
+        option->check(CLI::Validator(
+            [type](std::string& text) { return plain_number_problem(text, type); }, "", ""));
+    }
+    for (CLI::App* subcommand : app.get_subcommands({})) require_plain_numbers(*subcommand);
+}
+
+}  // namespace spiral_cli
