@@ -41,6 +41,11 @@ bool gltf_fuzz_load(const std::uint8_t* data, std::size_t size) {
     }
 }
 
+// For the corpus replay (replay_main.cpp).
+bool fuzz_target_accepts(const std::uint8_t* data, std::size_t size) {
+    return gltf_fuzz_load(data, size);
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     gltf_fuzz_load(data, size);
     return 0;

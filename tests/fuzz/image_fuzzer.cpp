@@ -80,8 +80,9 @@ std::vector<std::uint8_t> textured_glb(std::span<const std::uint8_t> image, std:
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    if (size < 1) return 0;
+// Loads one input as the fuzzer does; true when the loader accepted it.
+bool image_fuzz_load(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return false;
     deepgi::SceneLimits limits;
     limits.texture_side = 1024;
     limits.texture_bytes = 16u << 20;
@@ -97,7 +98,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 __builtin_trap();
         // Only the exact layout can load.
         if (data[0] % 6 != 0) __builtin_trap();
+        return true;
     } catch (const deepgi::InputError&) {
+        return false;
     }
+}
+
+// For the corpus replay (replay_main.cpp).
+bool fuzz_target_accepts(const std::uint8_t* data, std::size_t size) {
+    return image_fuzz_load(data, size);
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    image_fuzz_load(data, size);
     return 0;
 }

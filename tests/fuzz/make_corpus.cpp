@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
             seed.append(bytes.begin(), bytes.end());
             save(images / name, seed);
         };
-        image_seed("png-2x2", 0, png);
+        image_seed("valid-png-2x2", 0, png);
         for (std::uint8_t layout = 1; layout < 6; ++layout)
             image_seed(fmt::format("png-2x2-layout-{}", layout), layout, png);
         image_seed("png-truncated", 0, truncated);
@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
                 o.insert(o.end(), static_cast<std::uint8_t*>(d), static_cast<std::uint8_t*>(d) + n);
             },
             &jpeg, 2, 2, 4, rgba.data(), 90);
-        image_seed("jpeg-2x2", 0, jpeg);
+        image_seed("valid-jpeg-2x2", 0, jpeg);
         const std::vector<std::uint8_t> jpeg_truncated(
             jpeg.begin(), jpeg.begin() + std::ptrdiff_t(jpeg.size() / 2));
         image_seed("jpeg-truncated", 0, jpeg_truncated);

@@ -1,8 +1,9 @@
 // Runs the fuzz target once on every file named (or in every directory named)
 // on the command line, without libFuzzer: the corpus as a regression test in
 // every build, whatever the compiler. A crash fails the test, and so does a
-// seed file named valid-* that the loader refuses: a loader that refused
-// everything would otherwise pass.
+// seed file named valid-* that the target refuses: a loader that refused
+// everything would otherwise pass. Each target's file defines
+// fuzz_target_accepts.
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -11,7 +12,8 @@
 #include <string>
 #include <vector>
 
-bool gltf_fuzz_load(const std::uint8_t* data, std::size_t size);
+// Runs the target on one input; true when it accepted the input.
+bool fuzz_target_accepts(const std::uint8_t* data, std::size_t size);
 
 namespace {
 
@@ -31,11 +33,11 @@ void replay(const std::filesystem::path& path, Counts& counts) {
         ++counts.failures;
         return;
     }
-    const bool loaded = gltf_fuzz_load(bytes.data(), bytes.size());
+    const bool loaded = fuzz_target_accepts(bytes.data(), bytes.size());
     if (path.filename().string().rfind("valid-", 0) == 0) {
         ++counts.valid;
         if (!loaded) {
-            std::fprintf(stderr, "the loader refused the valid file %s\n", path.c_str());
+            std::fprintf(stderr, "the target refused the valid file %s\n", path.c_str());
             ++counts.failures;
         }
     }

@@ -5,7 +5,7 @@
 // refuse. Each file is built here; the expected refusal follows from it.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
-#include "gltf_support.hpp"
+#include "../support/gltf_support.hpp"
 
 #include <catch2/catch.hpp>
 #include <stb_image_write.h>
