@@ -71,11 +71,14 @@
 #define DEEPGI_UNIFORM_LAYER 4
 #define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
 #define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
+#define DEEPGI_UNIFORM_MATERIAL_SURFACE 7      // vec2: glTF roughness and metallic factors
+#define DEEPGI_UNIFORM_MIRROR_ROUGHNESS 8      // float: roughness at or below which a metal is a mirror
 #define DEEPGI_UNIFORM_PYRAMID_LEVEL 20    // int: the MIP level being written
 #define DEEPGI_UNIFORM_BLUR_DIRECTION 23   // ivec2: (1, 0) horizontal, (0, 1) vertical
 #define DEEPGI_UNIFORM_RADIOSITY_ALPHA 29       // float: temporal blend weight of the history
 #define DEEPGI_UNIFORM_RADIOSITY_TO_PREVIOUS 30 // mat4: camera space -> previous camera space
 #define DEEPGI_UNIFORM_COMPOSE_TERMS 36         // ivec3: AO, radiosity, environment (0: left out)
+#define DEEPGI_UNIFORM_COMPOSE_REFLECTIONS 37   // int: 1 while the reflection pass runs
 #define DEEPGI_UNIFORM_BACKFACE_LAYER 39        // int: the G-buffer layer the back faces must lie behind
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them

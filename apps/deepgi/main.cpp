@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,7 @@ struct Options {
     bool no_ao = false;
     bool no_radiosity = false;
     bool no_environment = false;
+    bool no_reflections = false;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::string radiosity_method{deepgi::to_string(deepgi::RadiositySettings{}.method)};
     std::vector<std::string> scene_limits;   // NAME=VALUE, see docs/hardening.md
@@ -102,6 +104,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.ao.enabled = !options.no_ao;
     settings.radiosity.enabled = !options.no_radiosity;
     settings.environment = !options.no_environment;
+    settings.reflection.enabled = !options.no_reflections;
     deepgi::validate(settings);
     return settings;
 }
@@ -224,6 +227,8 @@ int main(int argc, char** argv) {
     app.add_flag("--no-environment", options.no_environment,
                  "Compose without the environment term (with --no-radiosity --no-ao: direct "
                  "light and emissive only)");
+    app.add_flag("--no-reflections", options.no_reflections,
+                 "Trace no mirror reflections (mirror materials are shaded as diffuse)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-method", options.ao_method,
                    fmt::format("Deep SAO estimator: {} (march casts the reference's rays "
@@ -249,14 +254,20 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const deepgi::NumericSetting& row = rows[i];
             options.numeric[i] = row.get(defaults);
-            app.add_option(fmt::format("--{}", row.name), options.numeric[i],
-                           fmt::format("{} ({})", row.help, deepgi::describe_limits(row)))
-                ->type_name(row.integer ? "INT" : "FLOAT")
+            CLI::Option* option =
+                app.add_option(fmt::format("--{}", row.name), options.numeric[i],
+                               fmt::format("{} ({})", row.help, deepgi::describe_limits(row)));
+            // A row's word for 0 ("auto") is taken as the number 0.
+            if (!row.zero_word.empty())
+                option->transform(CLI::Transformer(
+                    std::map<std::string, std::string>{{std::string(row.zero_word), "0"}}));
+            option->type_name(row.integer ? "INT" : "FLOAT")
                 ->default_str(fmt::format("{}", row.get(defaults)))
-                ->group(row.group == "frame"       ? "Frame"
-                        : row.group == "ao"        ? "Deep SAO"
-                        : row.group == "radiosity" ? "Deep radiosity"
-                                                   : "Bilateral blur");
+                ->group(row.group == "frame"        ? "Frame"
+                        : row.group == "ao"         ? "Deep SAO"
+                        : row.group == "radiosity"  ? "Deep radiosity"
+                        : row.group == "reflection" ? "Mirror reflections"
+                                                    : "Bilateral blur");
         }
     }
     if (const auto status = parse_command_line(app, argc, argv, "deepgi")) return *status;

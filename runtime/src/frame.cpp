@@ -58,6 +58,7 @@ const std::vector<PassFactory>& default_pass_list() {
         make_radiosity_prepare_pass,  //
         make_radiosity_pass,          //
         make_blur_pass,               // AO and radiosity E share one bilateral blur
+        make_reflection_pass,         // scenes with mirrors only
         make_compose_pass,            //
         make_tonemap_pass,            // final image only
         make_debug_view_pass,         // any other view

@@ -10,20 +10,25 @@ namespace {
 
 class ComposePass final : public Pass {
 public:
-    explicit ComposePass(const ShaderLoader& loader)
-        : program_(build_fullscreen_program(loader, "compose.frag")) {}
+    ComposePass(const ShaderLoader& loader, const Scene& scene)
+        : scene_(&scene), program_(build_fullscreen_program(loader, "compose.frag")) {}
 
     std::string_view name() const override { return "compose"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"},
-                          {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
-                          {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
-                          {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
-                          {DEEPGI_UNIT_AO, "ao.blurred"},
-                          {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
-                          {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"}},
-                .writes = {"compose.radiance"}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        PassDeclaration declaration = {
+            .reads = {{DEEPGI_UNIT_DIRECT_LIGHT, "direct_light.radiance"},
+                      {DEEPGI_UNIT_GBUFFER_ALBEDO, "gbuffer.albedo"},
+                      {DEEPGI_UNIT_GBUFFER_EMISSIVE, "gbuffer.emissive"},
+                      {DEEPGI_UNIT_GBUFFER_DEPTH, "gbuffer.depth"},
+                      {DEEPGI_UNIT_AO, "ao.blurred"},
+                      {DEEPGI_UNIT_GBUFFER_NORMAL, "gbuffer.normal"},
+                      {DEEPGI_UNIT_RADIOSITY, "radiosity.blurred"}},
+            .writes = {"compose.radiance"}};
+        // Mirror pixels, when the reflection pass runs (compose.frag's unit 3).
+        if (reflections_traced(*scene_, settings))
+            declaration.reads.push_back({3, "reflection.radiance"});
+        return declaration;
     }
 
     void resize(FrameResources& frame) override {
@@ -40,6 +45,8 @@ public:
         glProgramUniform3i(program_.get(), DEEPGI_UNIFORM_COMPOSE_TERMS,
                            settings.ao.enabled ? 1 : 0, settings.radiosity.enabled ? 1 : 0,
                            settings.environment ? 1 : 0);
+        glProgramUniform1i(program_.get(), DEEPGI_UNIFORM_COMPOSE_REFLECTIONS,
+                           reflections_traced(*scene_, settings) ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());
@@ -53,6 +60,7 @@ public:
     }
 
 private:
+    const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
     gl::Texture radiance_;  // R11F_G11F_B10F
     gl::Framebuffer framebuffer_;
@@ -62,8 +70,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<ComposePass>(loader);
+std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene) {
+    return std::make_unique<ComposePass>(loader, scene);
 }
 
 }  // namespace deepgi

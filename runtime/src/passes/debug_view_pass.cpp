@@ -9,12 +9,12 @@ namespace {
 
 class DebugViewPass final : public Pass {
 public:
-    explicit DebugViewPass(const ShaderLoader& loader)
-        : program_(build_fullscreen_program(loader, "debug_view.frag")) {}
+    DebugViewPass(const ShaderLoader& loader, const Scene& scene)
+        : scene_(&scene), program_(build_fullscreen_program(loader, "debug_view.frag")) {}
 
     std::string_view name() const override { return "debug_view"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
+    PassDeclaration declaration(const RenderSettings& settings) const override {
         std::vector<PassRead> reads = gbuffer_and_direct_light_reads();
         reads.insert(reads.end(),
                      {{DEEPGI_UNIT_AO_RAW, "ao.raw"},
@@ -26,6 +26,8 @@ public:
                       // radiosity pass uses for the raw gather.
                       {DEEPGI_UNIT_RADIOSITY_RAW_LAYER0, "radiosity.irradiance.layer0"},
                       {DEEPGI_UNIT_RADIOSITY_RAW_LAYER1, "radiosity.irradiance.layer1"}});
+        // The hit layer of each mirror ray, at debug_view.frag's unit 5.
+        if (reflections_traced(*scene_, settings)) reads.push_back({5, "reflection.hit"});
         return {.reads = std::move(reads), .writes = {}};
     }
     void resize(FrameResources&) override {}
@@ -36,6 +38,7 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
+        glProgramUniform1i(program_.get(), 1, reflections_traced(*scene_, *frame.settings) ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
     }
@@ -49,13 +52,14 @@ public:
     }
 
 private:
+    const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
 };
 
 }  // namespace
 
-std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<DebugViewPass>(loader);
+std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene& scene) {
+    return std::make_unique<DebugViewPass>(loader, scene);
 }
 
 }  // namespace deepgi

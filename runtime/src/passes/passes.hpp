@@ -23,6 +23,12 @@ std::unique_ptr<Pass> make_radiosity_prepare_pass(const ShaderLoader& loader, co
 std::unique_ptr<Pass> make_radiosity_pass(const ShaderLoader& loader, const Scene& scene);
 // AO and layer 0's radiosity through one bilateral blur.
 std::unique_ptr<Pass> make_blur_pass(const ShaderLoader& loader, const Scene& scene);
+// Mirror reflections through both layers (reflection_pass.cpp).
+std::unique_ptr<Pass> make_reflection_pass(const ShaderLoader& loader, const Scene& scene);
+// Whether the reflection pass runs: reflections on and a mirror material in
+// the scene (roughness <= mirror_roughness, metallic >= 0.5). The passes it
+// needs (back faces) and the compose pass's read follow this.
+bool reflections_traced(const Scene& scene, const RenderSettings& settings);
 std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_tonemap_pass(const ShaderLoader& loader, const Scene& scene);
 std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene& scene);

@@ -858,6 +858,8 @@ Scene build_scene(const tinygltf::Model& model, const std::string& display_name,
             const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
             if (factor.size() == 4)
                 material.base_colour = glm::vec4(factor[0], factor[1], factor[2], factor[3]);
+            material.roughness = float(source.pbrMetallicRoughness.roughnessFactor);
+            material.metallic = float(source.pbrMetallicRoughness.metallicFactor);
             if (source.emissiveFactor.size() == 3) {
                 material.emissive = glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1],
                                               source.emissiveFactor[2]);
