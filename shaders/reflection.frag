@@ -151,7 +151,9 @@ bool segment_in_front(vec3 qa, vec3 qb) {
          any(greaterThan((hi >> level) - (lo >> level), ivec2(1))))
     ++level;
   if (level > reflection.max_level) return false;
-  ivec2 level_size = textureSize(nearest_depth, level);
+  // GL's floor-sized levels, computed rather than asked for: llvmpipe's
+  // textureSize answered with the next level's size here.
+  ivec2 level_size = max(size >> level, ivec2(1));
   ivec2 a = min(lo >> level, level_size - 1), b = min(hi >> level, level_size - 1);
   float nearest = min(min(texelFetch(nearest_depth, a, level).r, texelFetch(nearest_depth, ivec2(b.x, a.y), level).r),
                       min(texelFetch(nearest_depth, ivec2(a.x, b.y), level).r, texelFetch(nearest_depth, b, level).r));

@@ -7,6 +7,8 @@
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -160,10 +162,19 @@ public:
                               .channels = channels,
                               .decode = decode};
         };
-        return {output("reflection-radiance", radiance_, 3, OutputDecode::floats),
-                output("reflection-weight", radiance_, 1, OutputDecode::alpha),
-                output("reflection-hit", hit_, 3, OutputDecode::floats),
-                output("reflection-jitter", hit_, 1, OutputDecode::alpha)};
+        std::vector<PassOutput> list = {
+            output("reflection-radiance", radiance_, 3, OutputDecode::floats),
+            output("reflection-weight", radiance_, 1, OutputDecode::alpha),
+            output("reflection-hit", hit_, 3, OutputDecode::floats),
+            output("reflection-jitter", hit_, 1, OutputDecode::alpha)};
+        for (int level = 0; level < levels_; ++level)
+            list.push_back({.name = fmt::format("reflection-nearest-level{}", level),
+                            .texture = nearest_.get(),
+                            .level = level,
+                            .width = std::max(width_ >> level, 1),
+                            .height = std::max(height_ >> level, 1),
+                            .channels = 1});
+        return list;
     }
 
 private:
