@@ -462,8 +462,8 @@ const std::array<NumericSetting, 26> numeric_table = {{
      .label = "distance (m, 0: auto)",
      .group = "reflection",
      .owner = "reflection",
-     .help = "Mirror reflections: how far each reflected ray is marched; auto (or 0): three "
-             "quarters of the scene's bounding radius",
+     .help = "Mirror reflections: how far each reflected ray is marched; auto (or 0): the "
+             "scene's bounding radius",
      .unit = "metres",
      .minimum = 0.0f,
      .maximum = unlimited,

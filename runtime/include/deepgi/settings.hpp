@@ -239,7 +239,7 @@ struct RenderSettings {
 
 // The share of the scene's bounding radius a reflected ray is marched when
 // ReflectionSettings::distance is 0 (auto).
-inline constexpr float auto_reflection_distance_fraction = 0.75f;
+inline constexpr float auto_reflection_distance_fraction = 1.0f;
 // The march distance (m) for these settings and a scene of this bounding radius.
 float reflection_distance(const RenderSettings& settings, float scene_bounding_radius);
 
