@@ -32,18 +32,13 @@ layout(location = 36) uniform ivec3 terms;
 layout(location = 0) out vec3 out_radiance;
 
 #include "math_constants.glsl"
+#include "environment.glsl"
 
-// Irradiance from the environment onto a surface with world-space normal n.
-// Constant scenes: pi * ambient (a uniform sky of radiance `ambient`). Sky
-// scenes: a dome of the background colour above and a dim ground below,
-// blended by how far the normal points up.
-vec3 environment_irradiance(vec3 world_normal) {
-  if (dot(frame.background.rgb, vec3(1.0)) <= 0.0) return pi * frame.ambient.rgb;
-  float up = 0.5 + 0.5 * world_normal.y;
-  vec3 sky = frame.ambient.rgb + 0.25 * frame.background.rgb;
-  vec3 ground = frame.ambient.rgb * 0.5;
-  return pi * mix(ground, sky, up);
-}
+// Mirror reflections (reflection.frag), bound only while that pass runs: a
+// mirror pixel is its reflectance (albedo) times the reflected radiance, plus
+// its emission; a polished metal has no diffuse term.
+layout(binding = 3) uniform sampler2D reflection_radiance;
+layout(location = 37) uniform int reflections_traced;  // 1 while the reflection pass runs
 
 void main() {
   ivec3 texel = ivec3(gl_FragCoord.xy, 0);
@@ -51,7 +46,13 @@ void main() {
     out_radiance = frame.background.rgb;
     return;
   }
-  vec3 albedo = srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
+  vec4 albedo_and_flag = texelFetch(gbuffer_albedo, texel, 0);
+  vec3 albedo = srgb_decode(albedo_and_flag.rgb);
+  if (reflections_traced != 0 && is_mirror_alpha(albedo_and_flag.a)) {
+    out_radiance = texelFetch(gbuffer_emissive, texel, 0).rgb +
+                   albedo * texelFetch(reflection_radiance, texel.xy, 0).rgb;
+    return;
+  }
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
   vec3 world_normal = normalize(transpose(mat3(frame.view)) * normal);
   vec4 gathered = terms.y != 0 ? texelFetch(radiosity, texel.xy, 0) : vec4(0.0);

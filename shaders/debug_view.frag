@@ -20,7 +20,23 @@ layout(binding = 14) uniform sampler2D radiosity_blurred;
 layout(binding = 17) uniform sampler2D radiosity_layer0;
 layout(binding = 18) uniform sampler2D radiosity_layer1;
 
+// The reflection pass's hit texture, bound only while that pass runs
+// (debug_view_pass.cpp declares unit 5 for it).
+layout(binding = 5) uniform sampler2D reflection_hit;
+layout(location = 1) uniform int reflections_traced;
+
 layout(location = 0) out vec4 out_colour;
+
+// Mirror pixels by the layer their reflected ray hit: none (environment)
+// blue, layer 0 green, layer 1 red; other surfaces dim grey.
+vec3 reflection_hit_colour(ivec2 pixel) {
+  vec3 grey = vec3(0.3 * dot(srgb_decode(texelFetch(gbuffer_albedo, ivec3(pixel, 0), 0).rgb), vec3(1.0 / 3.0)));
+  if (reflections_traced == 0) return grey;
+  float layer = texelFetch(reflection_hit, pixel, 0).z;
+  if (layer < -1.5) return grey;
+  if (layer < -0.5) return vec3(0.1, 0.2, 0.9);
+  return layer < 0.5 ? vec3(0.1, 0.8, 0.2) : vec3(0.95, 0.15, 0.1);
+}
 
 vec3 view_colour(ivec2 pixel, int view) {
   int layer = (view == DEEPGI_VIEW_NORMAL_LAYER1 || view == DEEPGI_VIEW_ALBEDO_LAYER1 ||
@@ -31,6 +47,7 @@ vec3 view_colour(ivec2 pixel, int view) {
   if (stored_depth <= 0.0) return vec3(0.0);
   // Visibility is shown as compose uses it (1 = unoccluded white), not
   // tonemapped: the solid-angle AV is signed until here, so clamp to [0, 1].
+  if (view == DEEPGI_VIEW_REFLECTION_HIT_LAYER) return reflection_hit_colour(pixel);
   if (view == DEEPGI_VIEW_AO_RAW) return vec3(clamp(texelFetch(ao_raw, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(clamp(texelFetch(ao_blurred, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(clamp(texelFetch(ao_temporal, pixel, 0).r, 0.0, 1.0));

@@ -35,6 +35,8 @@ layout(location = DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE) uniform int has_base_c
 layout(binding = 24) uniform sampler2D emissive_texture;
 layout(location = DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE) uniform int has_emissive_texture;
 layout(location = DEEPGI_UNIFORM_ALPHA_CUTOFF) uniform float alpha_cutoff;
+layout(location = DEEPGI_UNIFORM_MATERIAL_SURFACE) uniform vec2 material_surface;  // roughness, metallic
+layout(location = DEEPGI_UNIFORM_MIRROR_ROUGHNESS) uniform float mirror_roughness;
 
 float reference_linear_depth(ivec2 pixel) {
   return linear_depth_from_stored(texelFetch(reference_depth, pixel, 0).r, frame.camera_ray_scale.z);
@@ -76,7 +78,9 @@ void main() {
 
   vec3 albedo = base_colour.rgb;
   out_normal = encode_normal(normalize(fragment_in.camera_normal));
-  out_albedo = vec4(srgb_encode(albedo), 1.0);
+  // Albedo's alpha carries the mirror flag (gbuffer_encoding.glsl).
+  bool mirror = material_surface.x <= mirror_roughness && material_surface.y >= 0.5;
+  out_albedo = vec4(srgb_encode(albedo), mirror ? gbuffer_mirror_alpha : 1.0);
 
   // Emissive is read from layer 0 only; motion from both (temporal filters).
   out_emissive = second_layer ? vec3(0.0) : emissive;

@@ -23,6 +23,11 @@ vec3 srgb_encode(vec3 linear) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
+// The albedo target's alpha: 1 for diffuse surfaces, this for mirrors (whose
+// albedo is then their reflectance); readers test is_mirror_alpha.
+const float gbuffer_mirror_alpha = 0.0;
+bool is_mirror_alpha(float alpha) { return alpha < 0.5; }
+
 vec3 srgb_decode(vec3 encoded) {
   return mix(encoded / 12.92, pow((encoded + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), encoded));
 }

@@ -35,6 +35,8 @@
 #define DEEPGI_UNIFORM_HAS_BASE_COLOUR_TEXTURE 2
 #define DEEPGI_UNIFORM_HAS_EMISSIVE_TEXTURE 5  // int
 #define DEEPGI_UNIFORM_ALPHA_CUTOFF 6          // float: alpha below it is a hole; < 0 opaque
+#define DEEPGI_UNIFORM_MATERIAL_SURFACE 7      // vec2: glTF roughness and metallic factors
+#define DEEPGI_UNIFORM_MIRROR_ROUGHNESS 8      // float: roughness at or below which a metal is a mirror
 
 // Scalars are named fields, four to a 16-byte row, so std140 packs them
 // exactly as C++ does; the padding is explicit.

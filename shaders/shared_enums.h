@@ -58,5 +58,6 @@
 // outgoing radiance B of layer 0 at its finest level (tonemapped).
 #define DEEPGI_VIEW_AO_TEMPORAL 17
 #define DEEPGI_VIEW_RADIOSITY_PREPARED 18
+#define DEEPGI_VIEW_REFLECTION_HIT_LAYER 19  // mirror pixels: none / layer 0 / layer 1 hit
 
 #endif

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,7 @@ struct Options {
     bool no_ao = false;
     bool no_radiosity = false;
     bool no_environment = false;
+    bool no_reflections = false;
     std::string ao_method{deepgi::to_string(deepgi::AoSettings{}.method)};
     std::string radiosity_method{deepgi::to_string(deepgi::RadiositySettings{}.method)};
     std::vector<std::string> scene_limits;   // NAME=VALUE, see docs/hardening.md
@@ -111,6 +113,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     settings.ao.enabled = !options.no_ao;
     settings.radiosity.enabled = !options.no_radiosity;
     settings.environment = !options.no_environment;
+    settings.reflection.enabled = !options.no_reflections;
     deepgi::validate(settings);
     return settings;
 }
@@ -254,6 +257,8 @@ int main(int argc, char** argv) {
     app.add_flag("--no-environment", options.no_environment,
                  "Compose without the environment term (with --no-radiosity --no-ao: direct "
                  "light and emissive only)");
+    app.add_flag("--no-reflections", options.no_reflections,
+                 "Trace no mirror reflections (mirror materials are shaded as diffuse)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-method", options.ao_method,
                    fmt::format("Deep SAO estimator: {} (march casts the reference's rays "
@@ -285,13 +290,14 @@ int main(int argc, char** argv) {
                 ->type_name(row.integer                 ? "INT"
                             : deepgi::accepts_auto(row) ? "FLOAT|auto"
                                                         : "FLOAT")
-                                ->default_str(deepgi::accepts_auto(row)
+                ->default_str(deepgi::accepts_auto(row)
                                   ? std::string("auto, from the scene's size")
                                   : spiral_apps::with_unit(row.get(defaults), row.unit))
-                ->group(row.group == "frame"       ? "Frame"
-                        : row.group == "ao"        ? "Deep SAO"
-                        : row.group == "radiosity" ? "Deep radiosity"
-                                                   : "Bilateral blur");
+                ->group(row.group == "frame"        ? "Frame"
+                        : row.group == "ao"         ? "Deep SAO"
+                        : row.group == "radiosity"  ? "Deep radiosity"
+                        : row.group == "reflection" ? "Mirror reflections"
+                                                    : "Bilateral blur");
         }
     }
     if (const auto status = parse_command_line(app, argc, argv, "deepgi")) return *status;

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -20,7 +21,7 @@ constexpr std::array<EnumName<Generator>, 3> generator_table = {{
     {Generator::reproject, "reproject"},
 }};
 
-constexpr std::array<EnumName<DebugView>, 19> view_table = {{
+constexpr std::array<EnumName<DebugView>, 20> view_table = {{
     {DebugView::final_image, "final"},
     {DebugView::normal_layer0, "normal-layer0"},
     {DebugView::normal_layer1, "normal-layer1"},
@@ -40,6 +41,7 @@ constexpr std::array<EnumName<DebugView>, 19> view_table = {{
     {DebugView::radiosity_layer1, "radiosity-layer1"},
     {DebugView::radiosity_blurred, "radiosity-blurred"},
     {DebugView::radiosity_confidence, "radiosity-confidence"},
+    {DebugView::reflection_hit_layer, "reflection-hit-layer"},
 }};
 
 constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
@@ -180,7 +182,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 23> numeric_table = {{
+const std::array<NumericSetting, 26> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -460,6 +462,52 @@ const std::array<NumericSetting, 23> numeric_table = {{
      .slider_min = 0.0f,
      .slider_max = 4.0f,
      DEEPGI_FLOAT_FIELD(blur.extent)},
+    {.name = "reflection-layers",
+     .label = "layers",
+     .group = "reflection",
+     .owner = "reflection",
+     .help = "Mirror reflections: G-buffer layers the reflected rays are marched against",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_reflection_layers),
+     .slider_min = 1.0f,
+     .slider_max = float(limits::max_reflection_layers),
+     DEEPGI_INT_FIELD(reflection.layers)},
+    {.name = "reflection-steps",
+     .label = "steps",
+     .group = "reflection",
+     .owner = "reflection",
+     .help = "Mirror reflections: march steps along each reflected ray",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_reflection_steps),
+     .slider_min = 4.0f,
+     .slider_max = 128.0f,
+     DEEPGI_INT_FIELD(reflection.steps)},
+    {.name = "reflection-distance",
+     .label = "distance (m, 0: auto)",
+     .group = "reflection",
+     .owner = "reflection",
+     .help = "Mirror reflections: how far each reflected ray is marched; auto (or 0): the "
+             "scene's bounding radius",
+     .unit = "metres",
+     .minimum = 0.0f,
+     .maximum = unlimited,
+     .slider_min = 0.0f,
+     .slider_max = 50.0f,
+     DEEPGI_FLOAT_FIELD(reflection.distance),
+     .scene_fraction = auto_reflection_distance_fraction},
+    {.name = "mirror-roughness",
+     .label = "mirror roughness",
+     .group = "reflection",
+     .owner = "gbuffer",
+     .help = "A material with roughnessFactor at most this and metallicFactor at least 0.5 is "
+             "a mirror",
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .slider_min = 0.0f,
+     .slider_max = 1.0f,
+     DEEPGI_FLOAT_FIELD(mirror_roughness)},
 }};
 #pragma GCC diagnostic pop
 
@@ -467,6 +515,11 @@ const std::array<NumericSetting, 23> numeric_table = {{
 #undef DEEPGI_INT_FIELD
 
 }  // namespace
+
+float reflection_distance(const RenderSettings& settings, float scene_bounding_radius) {
+    if (settings.reflection.distance > 0.0f) return settings.reflection.distance;
+    return std::max(auto_reflection_distance_fraction * scene_bounding_radius, 1e-3f);
+}
 
 std::span<const NumericSetting> numeric_settings() {
     return numeric_table;

@@ -182,7 +182,7 @@ TEST_CASE("settings: every enum's name table round-trips", "[runtime][settings]"
     check_round_trip<Generator>(3);
     check_round_trip<TimingMode>(3);
     // One row per DEEPGI_VIEW_* value, the shader's switch covers 0 to 18.
-    check_round_trip<DebugView>(19);
+    check_round_trip<DebugView>(20);
     for (int value = DEEPGI_VIEW_FINAL; value <= DEEPGI_VIEW_RADIOSITY_PREPARED; ++value)
         CHECK(to_string(static_cast<DebugView>(value)) != "?");
     CHECK(enum_name_list<Generator>() == "peel, previous, reproject");

@@ -673,3 +673,21 @@ TEST_CASE("gltf loader: a file without a camera gets a three-quarter view fitted
         CHECK(std::abs(clip.y / clip.w) <= 1.0f);
     }
 }
+
+TEST_CASE("gltf loader: metallic and roughness factors are kept, with glTF's defaults",
+          "[runtime][gltf]") {
+    // The mirror test (docs/reflections.md) reads them: roughness at most
+    // --mirror-roughness and metallic at least 0.5.
+    TriangleFile file;
+    file.primitive_extra = R"(,"material":0)";
+    file.extra =
+        R"(,"materials":[{"pbrMetallicRoughness":{"roughnessFactor":0.05,"metallicFactor":0.75}}])";
+    const deepgi::Scene polished = load(triangle_gltf(file));
+    REQUIRE(polished.materials.size() == 1);
+    REQUIRE(polished.materials[0].roughness == 0.05f);
+    REQUIRE(polished.materials[0].metallic == 0.75f);
+    file.extra = R"(,"materials":[{}])";
+    const deepgi::Scene plain = load(triangle_gltf(file));
+    REQUIRE(plain.materials[0].roughness == 1.0f);
+    REQUIRE(plain.materials[0].metallic == 1.0f);
+}

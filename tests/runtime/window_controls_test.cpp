@@ -165,7 +165,7 @@ TEST_CASE("window: keys change the settings they name and keep them valid", "[ru
     apply_key_action(KeyAction::next_generator, settings, state);
     CHECK(settings.generator == Generator::previous);
     apply_key_action(KeyAction::previous_view, settings, state);
-    CHECK(settings.view == DebugView::radiosity_confidence);  // wraps to the table's end
+    CHECK(settings.view == DebugView::reflection_hit_layer);  // wraps to the table's end
     apply_key_action(KeyAction::next_view, settings, state);
     CHECK(settings.view == DebugView::final_image);
     apply_key_action(KeyAction::toggle_layers, settings, state);
@@ -249,7 +249,7 @@ TEST_CASE(
     const std::set<std::string_view> owners = {
         "frame",         "shadow",  "gbuffer",     "backface_depth",    "direct_light",
         "depth_pyramid", "sao",     "ao_temporal", "radiosity_prepare", "radiosity",
-        "blur",          "compose", "tonemap",     "antialias"};
+        "blur",          "compose", "tonemap",     "antialias",         "reflection"};
     const RenderSettings defaults;
     for (const NumericSetting& row : numeric_settings()) {
         INFO(row.name);

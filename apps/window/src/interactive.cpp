@@ -384,6 +384,10 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
     }
     if (ImGui::CollapsingHeader("bilateral blur (AO and radiosity)"))
         numeric_sliders("blur", wanted, state.renderer->settings_in_use());
+    if (ImGui::CollapsingHeader("mirror reflections")) {
+        ImGui::Checkbox("reflections", &wanted.reflection.enabled);
+        numeric_sliders("reflection", wanted, state.renderer->settings_in_use());
+    }
     if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         KeyLight& light = state.light;
         ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"

@@ -40,6 +40,13 @@ struct Material {
     // Alpha mask: fragments whose alpha (factor x texture x vertex colour) is
     // below this are not surfaces, in both G-buffer layers. Negative: opaque.
     float alpha_cutoff = -1.0f;
+    // glTF's metallic-roughness factors (a file's material takes the file's,
+    // whose defaults are 1 and 1; built-in materials are diffuse). A material
+    // with roughness <= --mirror-roughness and metallic >= 0.5 is a mirror
+    // (docs/reflections.md): its base colour is the reflectance of a perfect
+    // mirror, and only its pixels trace reflected rays.
+    float roughness = 1.0f;
+    float metallic = 0.0f;
 };
 
 struct TextureImage {

@@ -11,6 +11,8 @@ namespace deepgi {
 class SceneBuilder {
 public:
     int add_material(glm::vec3 base_colour, glm::vec3 emissive = glm::vec3(0.0f));
+    // A polished metal: roughness 0, metallic 1, `reflectance` as its base colour.
+    int add_mirror_material(glm::vec3 reflectance);
 
     // Corners in any order around the quad; the winding is chosen so that the
     // front face points along `normal`.

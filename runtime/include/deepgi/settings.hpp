@@ -40,6 +40,7 @@ enum class DebugView {
     radiosity_layer1 = DEEPGI_VIEW_RADIOSITY_LAYER1,      // gathered E of layer 1, tonemapped
     radiosity_blurred = DEEPGI_VIEW_RADIOSITY_BLURRED,    // layer 0's E after the bilateral blur
     radiosity_confidence = DEEPGI_VIEW_RADIOSITY_CONFIDENCE,  // hemisphere covered (or taps used)
+    reflection_hit_layer = DEEPGI_VIEW_REFLECTION_HIT_LAYER,  // which layer each mirror ray hit
 };
 
 enum class TimingMode { automatic, cpu, gpu };
@@ -115,6 +116,8 @@ inline constexpr int max_ao_mip_level = 15;
 inline constexpr float min_ao_q = 1.0f;
 inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
+inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
+inline constexpr int max_reflection_steps = 1024;
 }  // namespace limits
 
 // The bias each estimator was derived or tuned with. Solid-angle needs none:
@@ -199,6 +202,18 @@ struct DepthPyramidSettings {
     int max_mip_level = 5;  // deepest level built (fewer when the image is smaller)
 };
 
+// Mirror reflections traced through both deep G-buffer layers (the paper's
+// section 4.5; docs/reflections.md). Only pixels of mirror materials are
+// traced: roughness at most `mirror_roughness` and metallic at least 0.5.
+struct ReflectionSettings {
+    bool enabled = true;  // false: the pass sits out and compose shades mirrors as diffuse
+    int layers = 2;       // 1: layer 0 only, 2: both deep G-buffer layers
+    int steps = 32;       // march steps along each reflected ray
+    // How far (m) a reflected ray is marched; 0: auto, a fraction of the
+    // scene's bounding radius (reflection_distance()).
+    float distance = 0.0f;
+};
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
@@ -220,7 +235,17 @@ struct RenderSettings {
     AoSettings ao;
     RadiositySettings radiosity;
     BlurSettings blur;  // one blur filters AO and radiosity E with the same weights
+    ReflectionSettings reflection;
+    // A material is a mirror when its roughness is at most this and its
+    // metallic factor at least 0.5 (glTF's metallic-roughness factors).
+    float mirror_roughness = 0.1f;
 };
+
+// The share of the scene's bounding radius a reflected ray is marched when
+// ReflectionSettings::distance is 0 (auto).
+inline constexpr float auto_reflection_distance_fraction = 1.0f;
+// The march distance (m) for these settings and a scene of this bounding radius.
+float reflection_distance(const RenderSettings& settings, float scene_bounding_radius);
 
 // An image size given as WIDTHxHEIGHT, each side 1 to limits::max_image_side.
 struct ImageSize {

@@ -1,12 +1,13 @@
 // Where the solid behind each G-buffer layer ends (backface_depth.frag,
 // docs/deep-sao.md "The march"): per layer, the nearest back face at or
-// behind the layer's stored depth. Only the march reads it, so the pass runs
-// only with that method, and only for the layers the AO gathers.
+// behind the layer's stored depth. The AO march and the mirror reflections
+// read it, so the pass runs only for them, and only for the layers they use.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 
 namespace deepgi {
@@ -22,8 +23,9 @@ constexpr GLint layer_location = 39;
 
 class BackfaceDepthPass final : public Pass {
 public:
-    explicit BackfaceDepthPass(const ShaderLoader& loader)
-        : program_(loader.build_program({{GL_VERTEX_SHADER, "backface_depth.vert"},
+    BackfaceDepthPass(const ShaderLoader& loader, const Scene& scene)
+        : scene_(&scene),
+          program_(loader.build_program({{GL_VERTEX_SHADER, "backface_depth.vert"},
                                          {GL_FRAGMENT_SHADER, "backface_depth.frag"}})),
           masked_program_(loader.build_program({{GL_VERTEX_SHADER, "backface_depth.vert"},
                                                 {GL_FRAGMENT_SHADER, "backface_depth.frag"}},
@@ -35,10 +37,7 @@ public:
         return {.reads = {{depth_binding, "gbuffer.depth"}}, .writes = {"backface.depth"}};
     }
 
-    bool enabled(const RenderSettings& settings) const override {
-        // The SAO pass runs (and binds this) whether or not compose uses AO.
-        return settings.ao.method == AoMethod::march;
-    }
+    bool enabled(const RenderSettings& settings) const override { return layers(settings) > 0; }
 
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
@@ -63,7 +62,7 @@ public:
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT);
-        for (int layer = 0; layer < frame.settings->ao.layers; ++layer) {
+        for (int layer = 0; layer < layers(*frame.settings); ++layer) {
             const GLuint framebuffer = framebuffers_[std::size_t(layer)].get();
             const float nothing_hit = 0.0f;  // reversed Z: 0 is infinitely far
             glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &nothing_hit);
@@ -79,7 +78,7 @@ public:
 
     std::vector<PassOutput> outputs(const FrameResources& frame) const override {
         std::vector<PassOutput> list;
-        for (int layer = 0; layer < frame.settings->ao.layers; ++layer)
+        for (int layer = 0; layer < layers(*frame.settings); ++layer)
             list.push_back({.name = fmt::format("backface-depth-layer{}", layer),
                             .texture = depth_.get(),
                             .layer = layer,
@@ -91,6 +90,16 @@ public:
     }
 
 private:
+    // The layers whose solids are read: the AO march's (the SAO pass runs,
+    // and binds this, whether or not compose uses AO) and the reflections'.
+    int layers(const RenderSettings& settings) const {
+        const int for_ao = settings.ao.method == AoMethod::march ? settings.ao.layers : 0;
+        const int for_reflections =
+            reflections_traced(*scene_, settings) ? settings.reflection.layers : 0;
+        return std::max(for_ao, for_reflections);
+    }
+
+    const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
     gl::Program masked_program_;  // ALPHA_MASK: for alpha-masked batches
     gl::Texture depth_;           // DEPTH_COMPONENT32F array, near / z (reversed, infinite)
@@ -101,8 +110,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Pass> make_backface_depth_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<BackfaceDepthPass>(loader);
+std::unique_ptr<Pass> make_backface_depth_pass(const ShaderLoader& loader, const Scene& scene) {
+    return std::make_unique<BackfaceDepthPass>(loader, scene);
 }
 
 }  // namespace deepgi

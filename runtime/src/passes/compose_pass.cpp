@@ -16,25 +16,32 @@ constexpr GLuint depth_binding = 4;
 constexpr GLuint direct_light_binding = 7;
 constexpr GLuint ao_binding = 11;
 constexpr GLuint radiosity_binding = 14;
+constexpr GLuint reflection_binding = 3;  // mirror pixels' reflected radiance
 // ivec3 uniform: AO, radiosity, environment (0: left out).
 constexpr GLint terms_location = 36;
+// int uniform: 1 while the reflection pass runs.
+constexpr GLint reflections_location = 37;
 
 class ComposePass final : public Pass {
 public:
-    explicit ComposePass(const ShaderLoader& loader)
-        : program_(build_fullscreen_program(loader, "compose.frag")) {}
+    ComposePass(const ShaderLoader& loader, const Scene& scene)
+        : scene_(&scene), program_(build_fullscreen_program(loader, "compose.frag")) {}
 
     std::string_view name() const override { return "compose"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{direct_light_binding, "direct_light.radiance"},
-                          {albedo_binding, "gbuffer.albedo"},
-                          {emissive_binding, "gbuffer.emissive"},
-                          {depth_binding, "gbuffer.depth"},
-                          {ao_binding, "ao.blurred"},
-                          {normal_binding, "gbuffer.normal"},
-                          {radiosity_binding, "radiosity.blurred"}},
-                .writes = {"compose.radiance"}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        PassDeclaration declaration = {.reads = {{direct_light_binding, "direct_light.radiance"},
+                                                 {albedo_binding, "gbuffer.albedo"},
+                                                 {emissive_binding, "gbuffer.emissive"},
+                                                 {depth_binding, "gbuffer.depth"},
+                                                 {ao_binding, "ao.blurred"},
+                                                 {normal_binding, "gbuffer.normal"},
+                                                 {radiosity_binding, "radiosity.blurred"}},
+                                       .writes = {"compose.radiance"}};
+        // Mirror pixels, when the reflection pass runs.
+        if (reflections_traced(*scene_, settings))
+            declaration.reads.push_back({reflection_binding, "reflection.radiance"});
+        return declaration;
     }
 
     void resize(FrameResources& frame) override {
@@ -50,6 +57,8 @@ public:
         const RenderSettings& settings = *frame.settings;
         glProgramUniform3i(program_.get(), terms_location, settings.ao.enabled ? 1 : 0,
                            settings.radiosity.enabled ? 1 : 0, settings.environment ? 1 : 0);
+        glProgramUniform1i(program_.get(), reflections_location,
+                           reflections_traced(*scene_, settings) ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());
@@ -63,6 +72,7 @@ public:
     }
 
 private:
+    const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
     gl::Texture radiance_;  // R11F_G11F_B10F
     gl::Framebuffer framebuffer_;
@@ -72,8 +82,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<ComposePass>(loader);
+std::unique_ptr<Pass> make_compose_pass(const ShaderLoader& loader, const Scene& scene) {
+    return std::make_unique<ComposePass>(loader, scene);
 }
 
 }  // namespace deepgi

@@ -21,29 +21,33 @@ constexpr GLuint irradiance_layer0_binding = 17;
 constexpr GLuint irradiance_layer1_binding = 18;
 constexpr GLuint prepared_radiance_binding = 21;
 constexpr GLuint ao_temporal_binding = 28;
+constexpr GLuint reflection_hit_binding = 5;
 
 class DebugViewPass final : public Pass {
 public:
-    explicit DebugViewPass(const ShaderLoader& loader)
-        : program_(build_fullscreen_program(loader, "debug_view.frag")) {}
+    DebugViewPass(const ShaderLoader& loader, const Scene& scene)
+        : scene_(&scene), program_(build_fullscreen_program(loader, "debug_view.frag")) {}
 
     std::string_view name() const override { return "debug_view"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{normal_binding, "gbuffer.normal"},
-                          {albedo_binding, "gbuffer.albedo"},
-                          {emissive_binding, "gbuffer.emissive"},
-                          {motion_binding, "gbuffer.motion"},
-                          {depth_binding, "gbuffer.depth"},
-                          {direct_light_binding, "direct_light.radiance"},
-                          {ao_raw_binding, "ao.raw"},
-                          {ao_blurred_binding, "ao.blurred"},
-                          {ao_temporal_binding, "ao.temporal"},
-                          {prepared_radiance_binding, "radiosity_prepare.radiance"},
-                          {radiosity_blurred_binding, "radiosity.blurred"},
-                          {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
-                          {irradiance_layer1_binding, "radiosity.irradiance.layer1"}},
-                .writes = {}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        std::vector<PassRead> reads = {{normal_binding, "gbuffer.normal"},
+                                       {albedo_binding, "gbuffer.albedo"},
+                                       {emissive_binding, "gbuffer.emissive"},
+                                       {motion_binding, "gbuffer.motion"},
+                                       {depth_binding, "gbuffer.depth"},
+                                       {direct_light_binding, "direct_light.radiance"},
+                                       {ao_raw_binding, "ao.raw"},
+                                       {ao_blurred_binding, "ao.blurred"},
+                                       {ao_temporal_binding, "ao.temporal"},
+                                       {prepared_radiance_binding, "radiosity_prepare.radiance"},
+                                       {radiosity_blurred_binding, "radiosity.blurred"},
+                                       {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
+                                       {irradiance_layer1_binding, "radiosity.irradiance.layer1"}};
+        // The hit layer of each mirror ray.
+        if (reflections_traced(*scene_, settings))
+            reads.push_back({reflection_hit_binding, "reflection.hit"});
+        return {.reads = std::move(reads), .writes = {}};
     }
     void resize(FrameResources&) override {}
     bool enabled(const RenderSettings& settings) const override {
@@ -53,6 +57,7 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
+        glProgramUniform1i(program_.get(), 1, reflections_traced(*scene_, *frame.settings) ? 1 : 0);
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
     }
@@ -66,13 +71,14 @@ public:
     }
 
 private:
+    const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
 };
 
 }  // namespace
 
-std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene&) {
-    return std::make_unique<DebugViewPass>(loader);
+std::unique_ptr<Pass> make_debug_view_pass(const ShaderLoader& loader, const Scene& scene) {
+    return std::make_unique<DebugViewPass>(loader, scene);
 }
 
 }  // namespace deepgi

@@ -131,6 +131,9 @@ public:
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
         const SceneGpu& scene = *frame.scene_gpu;
+        for (const gl::Program* program : {&peel_first_layer_, &peel_second_layer_, &single_pass_})
+            glProgramUniform1f(program->get(), DEEPGI_UNIFORM_MIRROR_ROUGHNESS,
+                               frame.settings->mirror_roughness);
 
         if (frame.settings->generator == Generator::peel) {
             clear_gbuffer(first_layer_framebuffer_, 4);

@@ -33,6 +33,11 @@ Antialias create_antialias(const ShaderLoader& loader);
 void run_antialias(Antialias& antialias, GLuint source, GLuint target_framebuffer, int width,
                    int height, GLuint empty_vertex_array);
 
+// Whether the reflection pass runs: reflections on and a mirror material in
+// the scene (roughness <= mirror_roughness, metallic >= 0.5). The passes it
+// needs (back faces) and the compose pass's read follow this.
+bool reflections_traced(const Scene& scene, const RenderSettings& settings);
+
 // The separable bilateral blur as a reusable building block: the blur pass
 // uses it, and so will any later pass that smooths a screen-space signal.
 // Tolerances are fractions of the centre pixel's depth.

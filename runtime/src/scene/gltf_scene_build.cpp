@@ -370,6 +370,16 @@ void SceneAssembly::add_materials() {
             const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
             if (factor.size() == 4)
                 material.base_colour = glm::vec4(factor[0], factor[1], factor[2], factor[3]);
+            // Kept for the mirror test (docs/reflections.md); the specification
+            // bounds both to [0, 1].
+            const double roughness = source.pbrMetallicRoughness.roughnessFactor;
+            const double metallic = source.pbrMetallicRoughness.metallicFactor;
+            if (!(roughness >= 0.0 && roughness <= 1.0) || !(metallic >= 0.0 && metallic <= 1.0))
+                reader.fail(fmt::format(
+                    "material {}: roughnessFactor and metallicFactor must lie in [0, 1]",
+                    material_index));
+            material.roughness = float(roughness);
+            material.metallic = float(metallic);
             if (source.emissiveFactor.size() == 3) {
                 material.emissive = glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1],
                                               source.emissiveFactor[2]);

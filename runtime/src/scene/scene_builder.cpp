@@ -12,6 +12,13 @@ int SceneBuilder::add_material(glm::vec3 base_colour, glm::vec3 emissive) {
     return static_cast<int>(materials_.size()) - 1;
 }
 
+int SceneBuilder::add_mirror_material(glm::vec3 reflectance) {
+    const int index = add_material(reflectance);
+    materials_[std::size_t(index)].roughness = 0.0f;
+    materials_[std::size_t(index)].metallic = 1.0f;
+    return index;
+}
+
 void SceneBuilder::add_quad(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 normal,
                             int material) {
     normal = glm::normalize(normal);

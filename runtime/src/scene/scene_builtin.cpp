@@ -244,20 +244,74 @@ Scene make_warehouse() {
     return scene;
 }
 
+// A room with a mirror floor (docs/reflections.md). A wide pillar hangs from
+// a beam and stops 1.1 m above the floor; a green sculpture stands on a
+// pedestal 1.5 m behind it, at the pillar's height. From the camera the
+// pillar hides the sculpture, so only layer 1 stores it; the mirror's
+// reflected rays pass under the pillar and reach it, so it shows in the
+// reflection with two layers and not with one. A red box stands in the open
+// for the reflection of a plainly visible object.
+Scene make_gallery() {
+    Scene scene;
+    scene.name = "gallery";
+    SceneBuilder builder;
+    const int mirror = builder.add_mirror_material({0.9f, 0.9f, 0.9f});
+    const int plaster = builder.add_material({0.75f, 0.72f, 0.66f});
+    const int blue_wall = builder.add_material({0.30f, 0.36f, 0.62f});
+    const int warm_wall = builder.add_material({0.72f, 0.58f, 0.40f});
+    const int stone = builder.add_material({0.60f, 0.60f, 0.58f});
+    const int red = builder.add_material({0.80f, 0.06f, 0.05f});
+    const int green = builder.add_material({0.08f, 0.78f, 0.18f});
+    const float half_x = 4.0f, back = -6.0f, front = 3.0f, height = 3.4f;
+    builder.add_quad({-half_x, 0, back}, {half_x, 0, back}, {half_x, 0, front}, {-half_x, 0, front},
+                     {0, 1, 0}, mirror);
+    builder.add_quad({-half_x, 0, back}, {half_x, 0, back}, {half_x, height, back},
+                     {-half_x, height, back}, {0, 0, 1}, plaster);
+    builder.add_quad({-half_x, 0, back}, {-half_x, 0, front}, {-half_x, height, front},
+                     {-half_x, height, back}, {1, 0, 0}, blue_wall);
+    builder.add_quad({half_x, 0, back}, {half_x, 0, front}, {half_x, height, front},
+                     {half_x, height, back}, {-1, 0, 0}, warm_wall);
+    // The beam, the hanging pillar (1.1 m to 3.2 m) and the hidden sculpture.
+    builder.add_box({0.0f, 3.25f, -1.0f}, {half_x, 0.12f, 0.15f}, stone);
+    builder.add_box({0.0f, 2.15f, -1.0f}, {1.2f, 1.05f, 0.12f}, stone);
+    builder.add_box({0.0f, 0.95f, -2.5f}, {0.08f, 0.95f, 0.08f}, stone);  // pedestal
+    builder.add_box({0.0f, 2.1f, -2.5f}, {0.3f, 0.2f, 0.2f}, green);
+    // In the open: a red box, and a full-height pillar at the side.
+    builder.add_box({-2.0f, 0.45f, -2.2f}, {0.45f, 0.45f, 0.45f}, red, glm::radians(20.0f));
+    builder.add_box({2.6f, height * 0.5f, -3.2f}, {0.3f, height * 0.5f, 0.3f}, stone);
+    builder.finish(scene);
+
+    scene.key_light.kind = LightKind::directional;
+    scene.key_light.direction = glm::normalize(glm::vec3(0.25f, -0.8f, -0.55f));
+    scene.key_light.intensity = 3.0f;
+    scene.ambient = glm::vec3(0.05f);
+    scene.background = glm::vec3(0.0f);
+    scene.default_camera = make_camera({0.0f, 1.7f, 2.0f}, 0.0f, -20.0f, 60.0f);
+    scene.camera_path.frames_per_key = 24;
+    scene.camera_path.keys = {
+        scene.default_camera,
+        make_camera({-0.8f, 1.6f, 2.2f}, -8.0f, -18.0f, 60.0f),
+        make_camera({0.7f, 1.8f, 1.8f}, 9.0f, -22.0f, 60.0f),
+    };
+    return scene;
+}
+
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-    return {"cornell", "atrium", "warehouse"};
+    return {"cornell", "atrium", "warehouse", "gallery"};
 }
 
 Scene make_builtin_scene(std::string_view name) {
     if (name == "cornell") return make_cornell();
     if (name == "atrium") return make_atrium();
     if (name == "warehouse") return make_warehouse();
+    if (name == "gallery") return make_gallery();
     if (name.substr(0, 4) == "ref-") return make_reference_scene(name);
-    throw InputError(fmt::format(
-        "unknown scene '{}' (built-in scenes: cornell, atrium, warehouse; or a .gltf/.glb file)",
-        name));
+    throw InputError(
+        fmt::format("unknown scene '{}' (built-in scenes: cornell, atrium, warehouse, gallery; or "
+                    "a .gltf/.glb file)",
+                    name));
 }
 
 }  // namespace deepgi

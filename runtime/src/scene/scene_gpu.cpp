@@ -107,6 +107,8 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
             }
             glProgramUniform1f(program_for_materials, DEEPGI_UNIFORM_ALPHA_CUTOFF,
                                material.alpha_cutoff);
+            glProgramUniform2f(program_for_materials, DEEPGI_UNIFORM_MATERIAL_SURFACE,
+                               material.roughness, material.metallic);
         }
         draw_batch(batch);
     }
