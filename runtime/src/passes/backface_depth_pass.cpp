@@ -31,7 +31,7 @@ public:
 
     bool enabled(const RenderSettings& settings) const override {
         // The SAO pass runs (and binds this) whether or not compose uses AO.
-        return settings.ao.method == AoMethod::march;
+        return ao_method_reads_back_faces(settings.ao.method);
     }
 
     void resize(FrameResources& frame) override {
