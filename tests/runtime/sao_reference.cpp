@@ -161,12 +161,17 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
     const float threshold = settings.bias + 0.5f * (2.0f * inputs.ray_scale.y * depth / height);
     const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
     const float c = std::cos(phi), s = std::sin(phi);
+    // The sectors turn with the pixel's rotation.
     const glm::vec3 axis = std::abs(normal.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
-    const glm::vec3 tangent = glm::normalize(glm::cross(normal, axis));
+    const glm::vec3 axis_t = glm::normalize(glm::cross(normal, axis));
+    const glm::vec3 axis_b = glm::cross(normal, axis_t);
+    const glm::vec3 tangent = c * axis_t + s * axis_b;
     const glm::vec3 bitangent = glm::cross(normal, tangent);
     const float radius_squared = settings.radius * settings.radius;
-    // covered[k][j]: bin j of sector k is already occluded by a nearer tap.
+    // covered[k][j]: bin j of sector k is already occluded by a nearer tap;
+    // seen[k]: some tap on the buffer fell into sector k.
     bool covered[thick_sectors][thick_bins] = {};
+    bool seen[thick_sectors] = {};
     double occlusion = 0.0;
     // Each tap stands for half the radial spacing of the taps of its sector
     // on either side of it (alpha units).
@@ -201,8 +206,13 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
                 const float along = glm::dot(ray, tap_normal);
                 const float t =
                     std::abs(along) > 1.0e-6f ? glm::dot(front_point, tap_normal) / along : front;
-                return ray * std::clamp(t, 0.5f * front, 2.0f * front) - position;
+                return ray * std::clamp(t, 0.1f * front, 10.0f * front) - position;
             };
+            const float azimuth = std::atan2(glm::dot(f, bitangent), glm::dot(f, tangent));
+            const int sector =
+                std::clamp(int(std::floor((azimuth / 6.2831853f + 0.5f) * float(thick_sectors))), 0,
+                           thick_sectors - 1);
+            seen[sector] = true;
             const glm::vec3 near_end = cell_end(std::max(tap.alpha - cell, 0.0f));
             const glm::vec3 far_end = cell_end(tap.alpha + cell);
             // Distance: the segment's point nearest to X.
@@ -222,12 +232,14 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             const float us[4] = {u(f), u(b), u(near_end), u(far_end)};
             const float lowest = *std::min_element(us, us + 4);
             const float highest = *std::max_element(us, us + 4);
-            const int first = std::min(int(lowest * float(thick_bins)), thick_bins - 1);
+            // The tap's plane meets X's camera ray at or behind X: a crease,
+            // and the band reaches down to the horizon.
+            const float toward_x = glm::dot(position, tap_normal);
+            const bool crease =
+                toward_x != 0.0f && glm::dot(front_point, tap_normal) / toward_x >= 1.0f;
+            const int first =
+                crease ? 0 : std::min(int(lowest * float(thick_bins)), thick_bins - 1);
             const int last = std::min(int(highest * float(thick_bins)), thick_bins - 1);
-            const float azimuth = std::atan2(glm::dot(f, bitangent), glm::dot(f, tangent));
-            const int sector =
-                std::clamp(int(std::floor((azimuth / 6.2831853f + 0.5f) * float(thick_sectors))), 0,
-                           thick_sectors - 1);
             int fresh = 0;
             for (int j = first; j <= last; ++j) {
                 fresh += !covered[sector][j];
@@ -236,7 +248,8 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             occlusion += double(1.0f - dd / radius_squared) * fresh;
         }
     }
-    return float(1.0 - occlusion / double(thick_sectors * thick_bins));
+    const int sectors_seen = int(std::count(seen, seen + thick_sectors, true));
+    return sectors_seen == 0 ? 1.0f : float(1.0 - occlusion / double(sectors_seen * thick_bins));
 }
 
 }  // namespace
