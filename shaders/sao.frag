@@ -4,7 +4,9 @@
 // testing both depth layers and keeping the larger occlusion.
 //
 // The march method instead follows DEEPGI_AO_MARCH_RAYS rays through both
-// layers (march_visibility below).
+// layers (march_visibility below). Define AO_SPIRAL_THICK to build the
+// thickness-aware spiral estimator (ao_spiral_thick.glsl) instead of the
+// methods chosen by sao.method.
 //
 // Define AO_LAYERS 1 to read layer 0 only (for comparison); the default is 2.
 // The blur that follows keys on the depth pyramid and the G-buffer normal, so
@@ -26,8 +28,8 @@
 // Bindings are this shader's own; sao_pass.cpp binds the same numbers.
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 0) uniform sampler2DArray gbuffer_normal;
-// March only: per layer, the nearest back face at or behind the stored
-// surface (reversed Z, 0 = none), where that surface's object ends.
+// March and thick spiral only: per layer, the nearest back face at or behind
+// the stored surface (reversed Z, 0 = none), where that surface's object ends.
 layout(binding = 29) uniform sampler2DArray backface_depth;
 
 // sao.method: DEEPGI_AO_METHOD_PUBLISHED: 1 - sqrt(pi/N * sum AO(X, Y)), the
@@ -173,6 +175,37 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
   return 1.0 - occlusion / float(DEEPGI_AO_MARCH_RAYS);
 }
 
+// Where tap i of the generated spiral lands for this pixel: the depth-pyramid
+// texel and level it reads, and the centre of the full-resolution pixel that
+// texel's depth came from. False where the tap is off the guard-banded buffer
+// (no depth there to test: no occlusion).
+bool spiral_tap(int i, ivec2 pixel, mat2 rotation, float radius_pixels, out ivec2 texel, out int level,
+                out vec2 tap_centre) {
+  ivec2 size = ivec2(frame.internal_size.xy);
+  // The clamp keeps the int conversion defined for absurd radii; a tap that
+  // far out is off the buffer either way.
+  vec2 offset = clamp((rotation * AO_TAP_OFFSETS[i]) * radius_pixels, vec2(-65536.0), vec2(65536.0));
+  ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
+  if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) return false;
+  // m_i = clamp(floor(log2(h_i / q)), 0, max_mip), in integers: floor(log2(x))
+  // of x >= 1 is the highest set bit of floor(x), exact where log2() may round.
+  float steps = min(AO_TAP_ALPHAS[i] * radius_pixels / sao.q, 65536.0);
+  level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), sao.max_mip);
+  // Level sizes follow GL's rule max(1, size >> level). Computed rather than
+  // asked of textureSize(): llvmpipe (Mesa 22, LLVM 15) answers textureSize
+  // with a lod that varies across the SIMD lanes wrongly, and taps vanish.
+  texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
+  // Rebuild the tap where its depth came from: the full-resolution pixel
+  // the rotated-grid texel copies (depth_pyramid.comp), not the tap's own
+  // pixel. A depth put at the wrong pixel is a point off the surface, which
+  // shades open floors seen at a grazing angle.
+  tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
+  return true;
+}
+
+#ifdef AO_SPIRAL_THICK
+#include "ao_spiral_thick.glsl"
+#endif
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -184,7 +217,6 @@ void main() {
   float radius = sao.radius;
   float bias = sao.bias;
   float intensity = sao.intensity;
-  float q = sao.q;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
 
@@ -194,38 +226,26 @@ void main() {
   mat2 rotation = pixel_rotation(uvec2(pixel));
   // This frame's angle of the temporal sequence (frame.cpp), which ao_temporal.frag averages over.
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
+  // Solid-angle and thick-spiral threshold: the G-buffer samples a surface
+  // once per pixel, so a point less than half a pixel footprint at X (metres
+  // per pixel at this depth) above the tangent plane cannot be told from X's
+  // own surface.
+  float footprint_bias = bias + 0.5 * (2.0 * frame.camera_ray_scale.y * depth / frame.internal_size.y);
+#ifdef AO_SPIRAL_THICK
+  out_visibility = pow(spiral_thick_visibility(pixel, position, normal, radius, radius_pixels, footprint_bias, rotation), intensity);
+  return;
+#endif
   if (sao.method == DEEPGI_AO_METHOD_MARCH) {
     out_visibility = pow(march_visibility(uvec2(pixel), position, normal, radius, bias, rotation), intensity);
     return;
   }
-  ivec2 size = ivec2(frame.internal_size.xy);
-
-  // Solid-angle threshold: the G-buffer samples a surface once per pixel, so
-  // a point less than half a pixel footprint at X (metres per pixel at this
-  // depth) above the tangent plane cannot be told from X's own surface.
-  float footprint_bias = bias + 0.5 * (2.0 * frame.camera_ray_scale.y * depth / frame.internal_size.y);
   float sum = 0.0;
   for (int i = 0; i < AO_NUM_TAPS; ++i) {
-    // The clamp keeps the int conversion defined for absurd radii; a tap that
-    // far out is off the buffer either way.
-    vec2 offset = clamp((rotation * AO_TAP_OFFSETS[i]) * radius_pixels, vec2(-65536.0), vec2(65536.0));
-    ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
-    // Off the guard-banded buffer there is no depth to test: no occlusion.
-    if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) continue;
-    // m_i = clamp(floor(log2(h_i / q)), 0, max_mip), in integers: floor(log2(x))
-    // of x >= 1 is the highest set bit of floor(x), exact where log2() may round.
-    float steps = min(AO_TAP_ALPHAS[i] * radius_pixels / q, 65536.0);
-    int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), sao.max_mip);
-    // Level sizes follow GL's rule max(1, size >> level). Computed rather than
-    // asked of textureSize(): llvmpipe (Mesa 22, LLVM 15) answers textureSize
-    // with a lod that varies across the SIMD lanes wrongly, and taps vanish.
-    ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
+    ivec2 texel;
+    int level;
+    vec2 tap_centre;
+    if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
-    // Rebuild the tap where its depth came from: the full-resolution pixel
-    // the rotated-grid texel copies (depth_pyramid.comp), not the tap's own
-    // pixel. A depth put at the wrong pixel is a point off the surface, which
-    // shades open floors seen at a grazing angle.
-    vec2 tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
     float occlusion = 0.0;
     if (sao.method == DEEPGI_AO_METHOD_SOLID_ANGLE) {
       ivec2 source = ivec2(tap_centre);

@@ -261,10 +261,12 @@ int main(int argc, char** argv) {
                  "Trace no mirror reflections (mirror materials are shaded as diffuse)");
     // Deep SAO (docs/deep-sao.md).
     app.add_option("--ao-method", options.ao_method,
-                   fmt::format("Deep SAO estimator: {} (march casts the reference's rays "
-                               "through the solids behind both layers; solid-angle is the "
-                               "reference's integral over the seen surface on the spiral taps, "
-                               "about 5x cheaper; published is 1 - sqrt(...))",
+                   fmt::format("Deep SAO estimator: {} (spiral-thick unions the "
+                               "directions hidden by each spiral tap's solid, front to back "
+                               "face; march casts the reference's rays through the same "
+                               "solids, about 5x the cost of the spiral gathers; solid-angle "
+                               "is the reference's integral over the seen surface on the "
+                               "spiral taps; published is 1 - sqrt(...))",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
 

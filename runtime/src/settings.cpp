@@ -50,7 +50,8 @@ constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
     {TimingMode::gpu, "gpu"},
 }};
 
-constexpr std::array<EnumName<AoMethod>, 3> ao_method_table = {{
+constexpr std::array<EnumName<AoMethod>, 4> ao_method_table = {{
+    {AoMethod::spiral_thick, "spiral-thick"},
     {AoMethod::solid_angle, "solid-angle"},
     {AoMethod::march, "march"},
     {AoMethod::published, "published"},
@@ -329,11 +330,11 @@ const std::array<NumericSetting, 27> numeric_table = {{
      .slider_max = 0.99f,
      DEEPGI_FLOAT_FIELD(ao.alpha)},
     {.name = "ao-thickness",
-     .label = "thickness (m, march)",
+     .label = "thickness (m, march, spiral-thick)",
      .group = "ao",
      .owner = "sao",
-     .help = "Deep SAO, march: the scene is taken as solid this deep behind a stored surface "
-             "with no back face behind it",
+     .help = "Deep SAO, march and spiral-thick: the scene is taken as solid this deep behind a "
+             "stored surface with no back face behind it",
      .unit = "metres",
      .minimum = 0.0f,
      .minimum_inclusive = false,

@@ -110,6 +110,22 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
 // frame and eight after it, each with a new rotation (frame.cpp).
 constexpr int accumulated_frames = 9;
 
+// What each estimator must reach. The march and the solid angle keep the
+// targets they were built to (MAE <= .03, |bias| <= .01 on both stages,
+// accumulated over 9 still frames); the thick spiral is held to the
+// stricter ones it was built to: MAE <= .015 and |bias| <= .005
+// on the first frame, MAE <= .01 after 64 still frames.
+struct Targets {
+    double mae_first = 0.03, bias_first = 0.01;
+    double mae_accumulated = 0.03, bias_accumulated = 0.01;
+    int frames = accumulated_frames;
+};
+
+Targets targets_of(AoMethod method) {
+    if (method == AoMethod::spiral_thick) return {0.015, 0.005, 0.01, 0.01, 64};
+    return {};
+}
+
 struct StageErrors {
     Error one_layer, two_layers;
     Error raw_two_layers;  // before the blur (and before the temporal filter's history)
@@ -132,7 +148,8 @@ ReferenceImages trace_truth(const Scene& scene) {
     return render_reference(rays, scene.default_camera, reference);
 }
 
-SceneErrors measure_scene(const Scene& scene, const ReferenceImages& truth, AoMethod method) {
+SceneErrors measure_scene(const Scene& scene, const ReferenceImages& truth, AoMethod method,
+                          int frames) {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     SceneErrors errors;
@@ -140,9 +157,9 @@ SceneErrors measure_scene(const Scene& scene, const ReferenceImages& truth, AoMe
         const RenderSettings settings = accuracy_settings(layers, method);
         Renderer renderer(scene, settings, loader);
         const int guard = frame_layout(settings).guard;
-        for (int frame = 1; frame <= accumulated_frames; ++frame) {
+        for (int frame = 1; frame <= frames; ++frame) {
             renderer.render(scene.default_camera);
-            if (frame != 1 && frame != accumulated_frames) continue;
+            if (frame != 1 && frame != frames) continue;
             StageErrors& stage = frame == 1 ? errors.first : errors.accumulated;
             const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
             const Error error =
@@ -188,6 +205,28 @@ spiral::test::TargetTable& targets() {
             // warehouse's 21514 open pixels in open surroundings fall below
             // 0.99 in the running mean of 9 frames, before the blur.
             {"march/warehouse/open/accumulated", {11.0, "measured 9 pixels"}},
+            // The thick spiral against the stricter targets it was built to
+            // (first frame MAE <= .015 and |bias| <= .005, MAE <= .01 after 64
+            // still frames): a sector's union of a few taps' bands is too dark
+            // where an occluder fills part of it and too bright where its taps
+            // miss one (docs/deep-sao.md, "The thick spiral"); 64 frames average
+            // its noise but not that bias. On ref-slab layer 1 adds nothing and
+            // two layers come out 1.2e-6 worse than one (float rounding).
+            {"spiral-thick/ref-crease/bias/first", {0.0099, "measured -0.0090"}},
+            {"spiral-thick/ref-slab/bias/first", {0.0077, "measured +0.0070"}},
+            {"spiral-thick/ref-slab/two-vs-one/accumulated", {1.5e-6, "measured 1.2e-6"}},
+            {"spiral-thick/ref-board/bias/first", {0.0067, "measured -0.0061"}},
+            {"spiral-thick/ref-board/mae/accumulated", {0.0113, "measured 0.0102"}},
+            {"spiral-thick/ref-bench/mae/first", {0.0202, "measured 0.0184"}},
+            {"spiral-thick/ref-bench/bias/first", {0.0060, "measured +0.0054"}},
+            {"spiral-thick/ref-bench/mae/accumulated", {0.0200, "measured 0.0182"}},
+            {"spiral-thick/cornell/mae/first", {0.0353, "measured 0.0321"}},
+            {"spiral-thick/cornell/mae/accumulated", {0.0344, "measured 0.0312"}},
+            {"spiral-thick/atrium/bias/first", {0.0060, "measured +0.0054"}},
+            {"spiral-thick/warehouse/mae/first", {0.0291, "measured 0.0264"}},
+            {"spiral-thick/warehouse/bias/first", {0.0165, "measured +0.0150"}},
+            {"spiral-thick/warehouse/mae/accumulated", {0.0278, "measured 0.0253"}},
+            {"spiral-thick/warehouse/bias/accumulated", {0.0156, "measured +0.0142"}},
         });
     return table;
 }
@@ -199,7 +238,8 @@ void check_target(const std::string& name, const std::string& target, const std:
     targets().check_at_most(name, target, stage, value, limit);
 }
 
-void check_stage(const std::string& name, const std::string& stage, const StageErrors& errors) {
+void check_stage(const std::string& name, const std::string& stage, const StageErrors& errors,
+                 double mae_limit, double bias_limit) {
     const Error& two = errors.two_layers;
     const Error& one = errors.one_layer;
     INFO(name << ", " << stage << ": two layers MAE " << two.mae << " bias " << two.bias
@@ -210,8 +250,8 @@ void check_stage(const std::string& name, const std::string& stage, const StageE
               << ", after " << two.open_dark << " / " << two.open_core_dark << " of "
               << two.open_core);
     REQUIRE(two.pixels > width * height / 4);
-    check_target(name, "mae", stage, two.mae, 0.03);
-    check_target(name, "bias", stage, std::abs(two.bias), 0.01);
+    check_target(name, "mae", stage, two.mae, mae_limit);
+    check_target(name, "bias", stage, std::abs(two.bias), bias_limit);
     // The second layer only adds occluders; it must not cost accuracy.
     check_target(name, "two-vs-one", stage, two.mae - one.mae, 0.0);
     // Surfaces with nothing within r stay open in the estimate itself, and
@@ -230,12 +270,14 @@ TEST_CASE("ao accuracy: blurred deep SAO estimates the ray-traced visibility on 
                                "ref-bench", "cornell", "atrium", "warehouse");
     const Scene scene = load_scene(name);
     const ReferenceImages truth = trace_truth(scene);
-    for (AoMethod method : {AoMethod::solid_angle, AoMethod::march}) {
+    for (AoMethod method : {AoMethod::spiral_thick, AoMethod::solid_angle, AoMethod::march}) {
         // Keys of short_of_target() and the messages name the method first.
         const std::string key = std::string(to_string(method)) + "/" + name;
-        const SceneErrors errors = measure_scene(scene, truth, method);
-        check_stage(key, "first", errors.first);
-        check_stage(key, "accumulated", errors.accumulated);
+        const Targets targets = targets_of(method);
+        const SceneErrors errors = measure_scene(scene, truth, method, targets.frames);
+        check_stage(key, "first", errors.first, targets.mae_first, targets.bias_first);
+        check_stage(key, "accumulated", errors.accumulated, targets.mae_accumulated,
+                    targets.bias_accumulated);
     }
     targets().write();
 }

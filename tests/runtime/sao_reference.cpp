@@ -102,6 +102,156 @@ float obscurance(glm::vec3 v, glm::vec3 normal, float radius_squared, float bias
     return (1.0f - vv / radius_squared) * std::max((vn - bias) / std::sqrt(vv + epsilon), 0.0f);
 }
 
+// Where a tap lands (sao.frag, spiral_tap): its pyramid level and texel, and
+// the level-0 pixel that texel's depth was copied from.
+struct TapLookup {
+    bool inside = false;  // false: off the guard-banded buffer
+    int level = 0;
+    int texel_x = 0, texel_y = 0;
+    int source_x = 0, source_y = 0;
+};
+
+TapLookup look_up_tap(const spiral::codegen::Tap& tap, int x, int y, float c, float s,
+                      float radius_pixels, float q, const SaoInputs& inputs) {
+    const FloatImage& base = inputs.pyramid.at(0);
+    const int max_mip = int(inputs.pyramid.size()) - 1;
+    TapLookup lookup;
+    const float offset_x = std::clamp((c * tap.x - s * tap.y) * radius_pixels, -65536.0f, 65536.0f);
+    const float offset_y = std::clamp((s * tap.x + c * tap.y) * radius_pixels, -65536.0f, 65536.0f);
+    const int tap_x = int(std::floor(float(x) + 0.5f + offset_x));
+    const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
+    if (tap_x < 0 || tap_y < 0 || tap_x >= base.width || tap_y >= base.height) return lookup;
+    // m_i = clamp(floor(log2(h_i / q)), 0, MAX_MIP), h_i = alpha_i * R.
+    const float steps = std::min(tap.alpha * radius_pixels / q, 65536.0f);
+    lookup.level =
+        steps < 1.0f ? 0 : std::min(int(std::floor(std::log2(std::floor(steps)))), max_mip);
+    const FloatImage& mip = inputs.pyramid[std::size_t(lookup.level)];
+    lookup.texel_x = std::min(tap_x >> lookup.level, mip.width - 1);
+    lookup.texel_y = std::min(tap_y >> lookup.level, mip.height - 1);
+    // The level-0 pixel the texel's depth was copied from: each level takes
+    // corner ((y & 1) ^ 1, (x & 1) ^ 1) of its 2x2 block in the level below,
+    // clamped at odd sizes.
+    lookup.source_x = lookup.texel_x;
+    lookup.source_y = lookup.texel_y;
+    for (int l = lookup.level; l > 0; --l) {
+        const FloatImage& finer = inputs.pyramid[std::size_t(l - 1)];
+        const int corner_x = (lookup.source_y & 1) ^ 1, corner_y = (lookup.source_x & 1) ^ 1;
+        lookup.source_x = std::min(2 * lookup.source_x + corner_x, finer.width - 1);
+        lookup.source_y = std::min(2 * lookup.source_y + corner_y, finer.height - 1);
+    }
+    lookup.inside = true;
+    return lookup;
+}
+
+// The thick spiral (docs/design.md, section 5.6): each tap's solid, from the
+// front surface to its back face along the camera ray, occludes the band of
+// elevations between its ends at its azimuth; bands are unioned per azimuth
+// sector in bins of equal cosine-weighted measure (u = sin^2 of the
+// elevation), and a bin counts once, weighted by the falloff at the distance
+// of the first tap (in order of growing radius) that covers it.
+constexpr int thick_sectors = 2;
+constexpr int thick_bins = 32;
+
+float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float depth,
+                              const SaoInputs& inputs,
+                              const std::vector<spiral::codegen::Tap>& taps,
+                              const AoSettings& settings) {
+    const float height = float(inputs.pyramid.at(0).height);
+    const float radius_pixels = settings.radius * (0.5f * height) / (inputs.ray_scale.y * depth);
+    const float threshold = settings.bias + 0.5f * (2.0f * inputs.ray_scale.y * depth / height);
+    const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
+    const float c = std::cos(phi), s = std::sin(phi);
+    // The sectors turn with the pixel's rotation.
+    const glm::vec3 axis = std::abs(normal.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+    const glm::vec3 axis_t = glm::normalize(glm::cross(normal, axis));
+    const glm::vec3 axis_b = glm::cross(normal, axis_t);
+    const glm::vec3 tangent = c * axis_t + s * axis_b;
+    const glm::vec3 bitangent = glm::cross(normal, tangent);
+    const float radius_squared = settings.radius * settings.radius;
+    // covered[k][j]: bin j of sector k is already occluded by a nearer tap;
+    // seen[k]: some tap on the buffer fell into sector k.
+    bool covered[thick_sectors][thick_bins] = {};
+    bool seen[thick_sectors] = {};
+    double occlusion = 0.0;
+    // Each tap stands for half the radial spacing of the taps of its sector
+    // on either side of it (alpha units).
+    const float cell = 0.5f * float(thick_sectors) / float(taps.size());
+    for (const auto& tap : taps) {
+        const float direction_x = (c * tap.x - s * tap.y) / tap.alpha;
+        const float direction_y = (s * tap.x + c * tap.y) / tap.alpha;
+        const TapLookup lookup = look_up_tap(tap, x, y, c, s, radius_pixels, settings.q, inputs);
+        if (!lookup.inside) continue;
+        const FloatImage& mip = inputs.pyramid[std::size_t(lookup.level)];
+        const float centre_x = float(lookup.source_x) + 0.5f;
+        const float centre_y = float(lookup.source_y) + 0.5f;
+        for (int layer = 0; layer < settings.layers; ++layer) {
+            const float front = mip.at(lookup.texel_x, lookup.texel_y, layer);
+            if (front <= 0.0f) continue;
+            const float back_face =
+                inputs.back_faces.at(std::size_t(layer)).at(lookup.source_x, lookup.source_y);
+            const float back =
+                back_face > 0.0f ? std::max(back_face, front) : front + settings.thickness;
+            const glm::vec3 front_point = camera_position(centre_x, centre_y, front, inputs);
+            const glm::vec3 f = front_point - position;
+            const glm::vec3 b = camera_position(centre_x, centre_y, back, inputs) - position;
+            // The tap's tangent plane across its cell of the sector's radii.
+            const FloatImage& normals = layer == 0 ? inputs.normals : inputs.normals_layer1;
+            const glm::vec3 tap_normal(normals.at(lookup.source_x, lookup.source_y, 0),
+                                       normals.at(lookup.source_x, lookup.source_y, 1),
+                                       normals.at(lookup.source_x, lookup.source_y, 2));
+            auto cell_end = [&](float alpha) {
+                const float at_x = float(x) + 0.5f + direction_x * alpha * radius_pixels;
+                const float at_y = float(y) + 0.5f + direction_y * alpha * radius_pixels;
+                const glm::vec3 ray = camera_position(at_x, at_y, 1.0f, inputs);
+                const float along = glm::dot(ray, tap_normal);
+                const float t =
+                    std::abs(along) > 1.0e-6f ? glm::dot(front_point, tap_normal) / along : front;
+                return ray * std::clamp(t, 0.1f * front, 10.0f * front) - position;
+            };
+            const float azimuth = std::atan2(glm::dot(f, bitangent), glm::dot(f, tangent));
+            const int sector =
+                std::clamp(int(std::floor((azimuth / 6.2831853f + 0.5f) * float(thick_sectors))), 0,
+                           thick_sectors - 1);
+            seen[sector] = true;
+            const glm::vec3 near_end = cell_end(std::max(tap.alpha - cell, 0.0f));
+            const glm::vec3 far_end = cell_end(tap.alpha + cell);
+            // Distance: the segment's point nearest to X.
+            const glm::vec3 e = b - f;
+            const float ee = glm::dot(e, e);
+            const glm::vec3 nearest =
+                ee > 0.0f ? f + e * std::clamp(-glm::dot(f, e) / ee, 0.0f, 1.0f) : f;
+            const float dd = glm::dot(nearest, nearest);
+            if (dd >= radius_squared) continue;
+            if (glm::dot(f, normal) <= threshold && glm::dot(b, normal) <= threshold) continue;
+            // u = sin^2 of the elevation above X's plane raised by the
+            // threshold; a point below it is at 0.
+            auto u = [&](glm::vec3 v) {
+                const float h = glm::dot(v, normal) - threshold;
+                return h > 0.0f ? std::min(h * h / glm::dot(v, v), 1.0f) : 0.0f;
+            };
+            const float us[4] = {u(f), u(b), u(near_end), u(far_end)};
+            const float lowest = *std::min_element(us, us + 4);
+            const float highest = *std::max_element(us, us + 4);
+            // The tap's plane meets X's camera ray at or behind X: a crease,
+            // and the band reaches down to the horizon.
+            const float toward_x = glm::dot(position, tap_normal);
+            const bool crease =
+                toward_x != 0.0f && glm::dot(front_point, tap_normal) / toward_x >= 1.0f;
+            const int first =
+                crease ? 0 : std::min(int(lowest * float(thick_bins)), thick_bins - 1);
+            const int last = std::min(int(highest * float(thick_bins)), thick_bins - 1);
+            int fresh = 0;
+            for (int j = first; j <= last; ++j) {
+                fresh += !covered[sector][j];
+                covered[sector][j] = true;
+            }
+            occlusion += double(1.0f - dd / radius_squared) * fresh;
+        }
+    }
+    const int sectors_seen = int(std::count(seen, seen + thick_sectors, true));
+    return sectors_seen == 0 ? 1.0f : float(1.0 - occlusion / double(sectors_seen * thick_bins));
+}
+
 }  // namespace
 
 std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) {
@@ -123,7 +273,6 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
     const FloatImage& base = inputs.pyramid.at(0);
     const int width = base.width;
     const int height = base.height;
-    const int max_mip = int(inputs.pyramid.size()) - 1;
     FloatImage result;
     result.width = width;
     result.height = height;
@@ -145,6 +294,12 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                     march_visibility(x, y, position, normal, inputs, settings), settings.intensity);
                 continue;
             }
+            if (settings.method == deepgi::AoMethod::spiral_thick) {
+                result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] = std::pow(
+                    spiral_thick_visibility(x, y, position, normal, depth, inputs, taps, settings),
+                    settings.intensity);
+                continue;
+            }
             const float radius_pixels =
                 settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
             const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
@@ -152,31 +307,12 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
             const float s = std::sin(phi);
             float sum = 0.0f;
             for (const auto& tap : taps) {
-                const float offset_x =
-                    std::clamp((c * tap.x - s * tap.y) * radius_pixels, -65536.0f, 65536.0f);
-                const float offset_y =
-                    std::clamp((s * tap.x + c * tap.y) * radius_pixels, -65536.0f, 65536.0f);
-                const int tap_x = int(std::floor(float(x) + 0.5f + offset_x));
-                const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
-                if (tap_x < 0 || tap_y < 0 || tap_x >= width || tap_y >= height) continue;
-                // m_i = clamp(floor(log2(h_i / q)), 0, MAX_MIP), h_i = alpha_i * R.
-                const float steps = std::min(tap.alpha * radius_pixels / settings.q, 65536.0f);
-                const int level =
-                    steps < 1.0f ? 0
-                                 : std::min(int(std::floor(std::log2(std::floor(steps)))), max_mip);
-                const FloatImage& mip = inputs.pyramid[std::size_t(level)];
-                const int texel_x = std::min(tap_x >> level, mip.width - 1);
-                const int texel_y = std::min(tap_y >> level, mip.height - 1);
-                // The level-0 pixel the texel's depth was copied from: each
-                // level takes corner ((y & 1) ^ 1, (x & 1) ^ 1) of its 2x2
-                // block in the level below, clamped at odd sizes.
-                int source_x = texel_x, source_y = texel_y;
-                for (int l = level; l > 0; --l) {
-                    const FloatImage& finer = inputs.pyramid[std::size_t(l - 1)];
-                    const int corner_x = (source_y & 1) ^ 1, corner_y = (source_x & 1) ^ 1;
-                    source_x = std::min(2 * source_x + corner_x, finer.width - 1);
-                    source_y = std::min(2 * source_y + corner_y, finer.height - 1);
-                }
+                const TapLookup lookup =
+                    look_up_tap(tap, x, y, c, s, radius_pixels, settings.q, inputs);
+                if (!lookup.inside) continue;
+                const FloatImage& mip = inputs.pyramid[std::size_t(lookup.level)];
+                const int texel_x = lookup.texel_x, texel_y = lookup.texel_y;
+                const int source_x = lookup.source_x, source_y = lookup.source_y;
                 float occlusion = 0.0f;
                 if (settings.method == deepgi::AoMethod::solid_angle) {
                     // Solid-angle method: the term of the obscurance integral

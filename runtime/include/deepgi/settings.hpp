@@ -50,6 +50,8 @@ enum class AoMethod {
     published = DEEPGI_AO_METHOD_PUBLISHED,      // 1 - sqrt(...), kept for comparison
     solid_angle = DEEPGI_AO_METHOD_SOLID_ANGLE,  // the reference's integral over the seen surface
     march = DEEPGI_AO_METHOD_MARCH,  // the reference's rays through slabs behind both layers
+    // the spiral taps' solids (front to back face), unioned in a hemisphere bitmask
+    spiral_thick = DEEPGI_AO_METHOD_SPIRAL_THICK,
 };
 
 // Deep radiosity estimators (docs/radiosity.md).
@@ -137,6 +139,12 @@ constexpr bool ao_method_gathers_taps(AoMethod method) {
     return method != AoMethod::march;
 }
 
+// Whether the estimator ends each stored surface's solid at its back face
+// (the backface_depth pass runs only then).
+constexpr bool ao_method_reads_back_faces(AoMethod method) {
+    return method == AoMethod::march || method == AoMethod::spiral_thick;
+}
+
 // Deep SAO (docs/design.md, section 5.6; docs/deep-sao.md). Tap count and spiral turns
 // come from the generated ao_taps.glsl, not from here.
 struct AoSettings {
@@ -147,8 +155,9 @@ struct AoSettings {
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     // The march is the one estimator that meets the accuracy targets against
     // the ray-traced reference on every scene; solid-angle is the fast spiral
-    // gather, about 5x cheaper on llvmpipe (docs/deep-sao.md, "Choosing an
-    // estimator").
+    // gather, about 5x cheaper on llvmpipe; the thick spiral reads the spiral
+    // and the layers' solids but does not yet reach the march's accuracy
+    // (docs/deep-sao.md, "Choosing an estimator").
     AoMethod method = AoMethod::march;
     // March only: the scene is taken as solid this deep (m) behind a stored
     // surface with no back face behind it (an open mesh: a floor or wall

@@ -90,10 +90,11 @@ public:
     }
 
 private:
-    // The layers whose solids are read: the AO march's (the SAO pass runs,
-    // and binds this, whether or not compose uses AO) and the reflections'.
+    // The layers whose solids are read: the AO estimator's when it reads back
+    // faces (the march, the thick spiral; the SAO pass runs, and binds this,
+    // whether or not compose uses AO) and the reflections'.
     int layers(const RenderSettings& settings) const {
-        const int for_ao = settings.ao.method == AoMethod::march ? settings.ao.layers : 0;
+        const int for_ao = ao_method_reads_back_faces(settings.ao.method) ? settings.ao.layers : 0;
         const int for_reflections =
             reflections_traced(*scene_, settings) ? settings.reflection.layers : 0;
         return std::max(for_ao, for_reflections);

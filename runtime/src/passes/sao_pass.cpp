@@ -17,15 +17,21 @@ class SaoPass final : public Pass {
 public:
     explicit SaoPass(const ShaderLoader& loader)
         : one_layer_(build_fullscreen_program(loader, "sao.frag", "#define AO_LAYERS 1\n")),
-          two_layers_(build_fullscreen_program(loader, "sao.frag", "#define AO_LAYERS 2\n")) {}
+          two_layers_(build_fullscreen_program(loader, "sao.frag", "#define AO_LAYERS 2\n")),
+          // The thickness-aware spiral has its own include (ao_spiral_thick.glsl),
+          // compiled in only where it runs.
+          thick_one_layer_(build_fullscreen_program(
+              loader, "sao.frag", "#define AO_LAYERS 1\n#define AO_SPIRAL_THICK 1\n")),
+          thick_two_layers_(build_fullscreen_program(
+              loader, "sao.frag", "#define AO_LAYERS 2\n#define AO_SPIRAL_THICK 1\n")) {}
 
     std::string_view name() const override { return "sao"; }
 
     PassDeclaration declaration(const RenderSettings& settings) const override {
         std::vector<PassRead> reads = {{depth_binding, "depth_pyramid"},
                                        {normal_binding, "gbuffer.normal"}};
-        // Only the march ends each solid at its back face.
-        if (settings.ao.method == AoMethod::march)
+        // Only the march and the thick spiral end each solid at its back face.
+        if (ao_method_reads_back_faces(settings.ao.method))
             reads.push_back({backface_binding, "backface.depth"});
         return {.reads = std::move(reads), .writes = {"ao.raw"}};
     }
@@ -42,7 +48,10 @@ public:
 
     void run(FrameResources& frame) override {
         const AoSettings& settings = frame.settings->ao;
-        const GLuint program = settings.layers == 1 ? one_layer_.get() : two_layers_.get();
+        const bool thick = settings.method == AoMethod::spiral_thick;
+        const GLuint program = settings.layers == 1
+                                   ? (thick ? thick_one_layer_ : one_layer_).get()
+                                   : (thick ? thick_two_layers_ : two_layers_).get();
         begin_fullscreen(framebuffer_.get(), width_, height_);
         parameters_.bind({.radius = settings.radius,
                           .bias = settings.bias,
@@ -68,6 +77,8 @@ public:
 private:
     gl::Program one_layer_;
     gl::Program two_layers_;
+    gl::Program thick_one_layer_;
+    gl::Program thick_two_layers_;
     ParameterBlock<shader_shared::SaoParameters> parameters_;
     gl::Texture visibility_;  // R16F ambient visibility, signed (at most 1)
     gl::Framebuffer framebuffer_;

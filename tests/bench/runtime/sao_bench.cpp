@@ -6,13 +6,18 @@
 // gpu). Medians of --frames frames after --warmup, one layer and two taking
 // turns frame by frame, every scene of --scenes in one run. It times the solid-angle estimator
 // unless told otherwise: --ao-method march times the march, whose rays and
-// steps (shared_enums.h) do not follow the tap count.
+// steps (shared_enums.h) do not follow the tap count. --against M adds a
+// third renderer, two layers with estimator M, to the same alternation, and
+// the ratio of the two estimators' SAO passes (one run, frame by frame).
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "study_headers.hpp"
 
 #include <fmt/format.h>
+
+#include <optional>
+#include <vector>
 
 int main(int argc, char** argv) {
     deepgi::bench::Options options;
@@ -29,6 +34,10 @@ int main(int argc, char** argv) {
            "--ao-method", method_name,
            fmt::format("Deep SAO estimator: {}", deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
+    std::string against_name;
+    app.add_option("--against", against_name,
+                   "Also time this estimator (two layers) in the same alternation, and print the "
+                   "ratio of the SAO passes");
     CLI11_PARSE(app, argc, argv);
 
     return deepgi::bench::run("sao_bench", [&] {
@@ -42,6 +51,11 @@ int main(int argc, char** argv) {
         settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
         deepgi::RenderSettings one_layer = settings;
         one_layer.ao.layers = 1;
+        deepgi::RenderSettings against = settings;
+        if (!against_name.empty()) {
+            against.ao.method = deepgi::parse_ao_method("--against", against_name);
+            against.ao.bias = deepgi::default_ao_bias(against.ao.method);
+        }
 
         deepgi::HeadlessContext context;
         deepgi::study::ScratchFolder headers;
@@ -49,8 +63,11 @@ int main(int argc, char** argv) {
         std::string measured;
         fmt::print(
             "| scene | N | tau | 1 layer (ms) | 2 layers (ms) | 2 / 1 | blur (ms) | depth pyramid "
-            "(ms) |\n");
-        fmt::print("|---|--:|--:|--:|--:|--:|--:|--:|\n");
+            "(ms) |{}\n",
+            against_name.empty()
+                ? ""
+                : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} |", against_name));
+        fmt::print("|---|--:|--:|--:|--:|--:|--:|--:|{}\n", against_name.empty() ? "" : "--:|--:|");
         for (const auto& scene_name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(scene_name);
             for (int n : tap_counts) {
@@ -60,13 +77,22 @@ int main(int argc, char** argv) {
                     spiral::codegen::make_gather_header("ao", n, tau, {"sao_bench"}));
                 deepgi::Renderer one(scene, one_layer, loader);
                 deepgi::Renderer two(scene, settings, loader);
-                const auto medians = deepgi::bench::time_alternated(
-                    {{&one, scene.default_camera}, {&two, scene.default_camera}}, options);
+                std::optional<deepgi::Renderer> other;
+                if (!against_name.empty()) other.emplace(scene, against, loader);
+                std::vector<deepgi::bench::Configuration> timed = {{&one, scene.default_camera},
+                                                                   {&two, scene.default_camera}};
+                if (other) timed.push_back({&*other, scene.default_camera});
+                const auto medians = deepgi::bench::time_alternated(timed, options);
                 const double one_ms = medians[0].at("sao");
                 const double two_ms = medians[1].at("sao");
-                fmt::print("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n",
+                std::string extra;
+                if (other) {
+                    const double other_ms = medians[2].at("sao");
+                    extra = fmt::format(" {:.2f} | {:.2f} |", other_ms, two_ms / other_ms);
+                }
+                fmt::print("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |{}\n",
                            scene_name, n, tau, one_ms, two_ms, two_ms / one_ms,
-                           medians[1].at("blur"), medians[1].at("depth_pyramid"));
+                           medians[1].at("blur"), medians[1].at("depth_pyramid"), extra);
                 std::fflush(stdout);
                 if (measured.empty()) measured = deepgi::bench::measured_on(two, options);
             }

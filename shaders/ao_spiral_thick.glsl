@@ -1,0 +1,130 @@
+// The thickness-aware spiral estimator of deep SAO (docs/design.md, section
+// 5.6; docs/deep-sao.md, "The thick spiral"). Included by sao.frag where
+// AO_SPIRAL_THICK is defined; reads what sao.frag declares (the depth
+// pyramid, the back-face depths, the generated taps of ao_taps.glsl).
+//
+// Every stored surface is the front of a solid that reaches back along its
+// camera ray to the nearest back face behind it (backface_depth.frag), or
+// sao.thickness deep behind an open mesh, as in the march. Tap i of the
+// spiral reads, per layer, that solid's segment on the camera ray through the
+// tap's source pixel, from its front point F to its back point B. Seen from
+// X, the segment occludes directions between the elevations of F and B at the
+// tap's azimuth.
+//
+// The hemisphere is kept as AO_THICK_SECTORS azimuth sectors of the tangent
+// plane, each a 32-bit mask over u = sin^2(elevation) in [0, 1]. With
+// cos(theta) = sin(elevation) the cosine-weighted measure of a band of
+// elevations is, per unit azimuth, (1/2) d(sin^2), so equal steps of u are
+// equal shares of the projected solid angle and a bit's share is
+// 1 / (32 * AO_THICK_SECTORS): a popcount is an exact cosine weighting.
+//
+// The taps come in order of growing radius (alpha_i ascends), so the first
+// tap to cover a bit is, near enough, the nearest occluder in those
+// directions: a bit counts once, with the reference's falloff
+// f(d) = 1 - d^2 / r^2 at the tap's distance d (the segment's nearest point
+// to X), as the reference's rays count their first hit. Bits no tap covers
+// are open. A sector no tap on the buffer fell into is unknown rather than
+// open: the estimate is the mean over the sectors seen.
+
+#ifndef AO_THICK_SECTORS
+#define AO_THICK_SECTORS 2
+#endif
+
+// Bits first to last of a 32-bit mask set, 0 <= first <= last <= 31.
+uint bit_range(int first, int last) {
+  uint upto_last = last >= 31 ? 0xffffffffu : (1u << uint(last + 1)) - 1u;
+  return upto_last & ~((1u << uint(first)) - 1u);
+}
+
+// u = sin^2 of the elevation of v above X's plane raised by threshold; a
+// point below it is at 0.
+float elevation_u(vec3 v, vec3 normal, float threshold) {
+  float height = dot(v, normal) - threshold;
+  return height > 0.0 ? min(height * height / dot(v, v), 1.0) : 0.0;
+}
+
+// Where the camera ray through a pixel position meets the plane through
+// `point` with normal `plane_normal`; depth kept within a factor 10 of the
+// point's, so a plane seen edge-on does not run off to infinity.
+vec3 cell_end(vec2 at, vec3 point, vec3 plane_normal) {
+  vec3 ray = camera_position_at(at, 1.0, frame.internal_size, frame.camera_ray_scale);
+  float along = dot(ray, plane_normal);
+  float depth = -point.z;
+  float t = abs(along) > 1.0e-6 ? dot(point, plane_normal) / along : depth;
+  return ray * clamp(t, 0.1 * depth, 10.0 * depth);
+}
+
+// threshold: points less than this above X's tangent plane are X's own
+// surface (sao.frag's footprint threshold); elevations are measured from
+// that raised plane.
+float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float radius,
+                              float radius_pixels, float threshold, mat2 rotation) {
+  // The sectors turn with the pixel's rotation: a fixed split would line up
+  // with the view (towards the camera against away from it) and bias every
+  // pixel beside a wall the same way.
+  vec3 axis_t = normalize(cross(normal, abs(normal.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 axis_b = cross(normal, axis_t);
+  vec3 tangent = rotation[0].x * axis_t + rotation[0].y * axis_b;
+  vec3 bitangent = cross(normal, tangent);
+  float radius_squared = radius * radius;
+  uint masks[AO_THICK_SECTORS];
+  for (int k = 0; k < AO_THICK_SECTORS; ++k) masks[k] = 0u;
+  float occlusion = 0.0;
+  // Sectors some tap landed in on the buffer: the others (taps off the
+  // guard band, towards the camera next to the bottom edge) are unknown,
+  // not open, and leave the estimate to the sectors that were seen.
+  uint informed = 0u;
+  vec2 pixel_centre = vec2(pixel) + 0.5;
+  // Half the radial spacing of the taps within one sector, in alpha.
+  float cell = 0.5 * float(AO_THICK_SECTORS) / float(AO_NUM_TAPS);
+  for (int i = 0; i < AO_NUM_TAPS; ++i) {
+    vec2 direction = rotation * AO_TAP_OFFSETS[i] / AO_TAP_ALPHAS[i];
+    ivec2 texel;
+    int level;
+    vec2 tap_centre;
+    if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
+    vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
+    ivec2 source = ivec2(tap_centre);
+    for (int layer = 0; layer < AO_LAYERS; ++layer) {
+      float front = layer == 0 ? tap_depths.r : tap_depths.g;
+      if (front <= 0.0) continue;
+      float back_face = texelFetch(backface_depth, ivec3(source, layer), 0).r;
+      float back = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, front) : front + sao.thickness;
+      vec3 front_point = camera_position_at(tap_centre, front, frame.internal_size, frame.camera_ray_scale);
+      vec3 f = front_point - position;
+      vec3 b = camera_position_at(tap_centre, back, frame.internal_size, frame.camera_ray_scale) - position;
+      float azimuth = atan(dot(f, bitangent), dot(f, tangent));  // the front point's, in (-pi, pi]
+      int sector = clamp(int(floor((azimuth * (0.5 / pi) + 0.5) * float(AO_THICK_SECTORS))), 0,
+                         AO_THICK_SECTORS - 1);
+      informed |= 1u << uint(sector);
+      // The tap stands for its sector's radial cell: its surface, taken as
+      // its tangent plane, from alpha - w to alpha + w along its direction.
+      vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(source, layer), 0).xy);
+      vec3 near_end = cell_end(pixel_centre + direction * max(AO_TAP_ALPHAS[i] - cell, 0.0) * radius_pixels, front_point, tap_normal) - position;
+      vec3 far_end = cell_end(pixel_centre + direction * (AO_TAP_ALPHAS[i] + cell) * radius_pixels, front_point, tap_normal) - position;
+      // The segment's nearest point to X gives the distance of the falloff.
+      vec3 e = b - f;
+      float ee = dot(e, e);
+      vec3 nearest = ee > 0.0 ? f + e * clamp(-dot(f, e) / ee, 0.0, 1.0) : f;
+      float dd = dot(nearest, nearest);
+      if (dd >= radius_squared) continue;
+      if (dot(f, normal) <= threshold && dot(b, normal) <= threshold) continue;  // below X's plane: hides nothing
+      float u_f = elevation_u(f, normal, threshold), u_b = elevation_u(b, normal, threshold);
+      float u_near = elevation_u(near_end, normal, threshold), u_far = elevation_u(far_end, normal, threshold);
+      // Where the tap's plane meets the camera ray through X behind X, the
+      // tap's surface runs into X's (a crease): it is taken to continue
+      // down to X's plane, and its band to start at the horizon. In front
+      // of X it would be a surface invented in front of X (a silhouette).
+      float toward_x = dot(position, tap_normal);
+      bool crease = toward_x != 0.0 && dot(front_point, tap_normal) / toward_x >= 1.0;
+      int first = crease ? 0 : min(int(min(min(u_f, u_b), min(u_near, u_far)) * 32.0), 31);
+      int last = min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
+      uint bits = bit_range(first, last);
+      uint fresh = bits & ~masks[sector];
+      masks[sector] |= bits;
+      occlusion += (1.0 - dd / radius_squared) * float(bitCount(fresh));
+    }
+  }
+  int seen = bitCount(informed);
+  return seen == 0 ? 1.0 : 1.0 - occlusion / float(32 * seen);
+}
