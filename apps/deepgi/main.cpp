@@ -144,7 +144,7 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
     for (const std::string& line : deepgi::describe_auto_lengths(
              settings, renderer.settings_in_use(), deepgi::scene_bounding_radius(scene)))
-        fmt::print("scene scale: {}\n", line);
+        fmt::print(stderr, "scene scale: {}\n", line);
     // A labelled bar for long runs, only where someone watches.
     const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {

@@ -223,6 +223,9 @@ spiral::test::TargetTable& targets() {
             {"spiral-thick/cornell/mae/first", {0.0353, "measured 0.0321"}},
             {"spiral-thick/cornell/mae/accumulated", {0.0344, "measured 0.0312"}},
             {"spiral-thick/atrium/bias/first", {0.0060, "measured +0.0054"}},
+            // With the R2 sequence, 2 of atrium's open pixels in open
+            // surroundings fall below 0.99 in the running mean, before the blur.
+            {"spiral-thick/atrium/open/accumulated", {4.0, "measured 2 pixels"}},
             {"spiral-thick/warehouse/mae/first", {0.0291, "measured 0.0264"}},
             {"spiral-thick/warehouse/bias/first", {0.0165, "measured +0.0150"}},
             {"spiral-thick/warehouse/mae/accumulated", {0.0278, "measured 0.0253"}},

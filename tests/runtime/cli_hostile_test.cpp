@@ -123,11 +123,12 @@ TEST_CASE("cli: deepgi reference writes its images as one set", "[runtime][cli][
     REQUIRE(!contains(full.err, "depth-layer0"));
     REQUIRE(!fs::exists(set));
     REQUIRE(fs::is_empty(dir));  // no temporary left either
-    // The whole set, then a second run replacing it whole.
+    // The whole set (11 images, each a PFM and its PNG preview), then a
+    // second run replacing it whole (7 images).
     REQUIRE(run_command(reference("--output " + set.string())).status == 0);
-    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 11);
+    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 22);
     REQUIRE(run_command(reference("--no-irradiance --output " + set.string())).status == 0);
-    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 7);
+    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 14);
     // A folder holding anything else is refused before tracing.
     std::ofstream(set / "notes.txt") << "mine";
     require_bad_input(reference("--output " + set.string()), "holds other files");

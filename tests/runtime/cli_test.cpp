@@ -335,8 +335,8 @@ TEST_CASE("cli: every dumped output is finite and inside its documented range", 
     const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
     CHECK(colour.width == 161);
     CHECK(colour.height == 91);
-    // docs/deepgi.md: 56 files for cornell with the defaults.
-    CHECK(files == 56);
+    // docs/deepgi.md: 57 files for cornell with the defaults.
+    CHECK(files == 57);
 }
 
 TEST_CASE("cli: a glTF file renders with its base colour factor and emissive",
