@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <spiral/fileio.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -142,9 +143,18 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     }
     deepgi::HeadlessContext context;
     deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    // Information goes to standard output, unless the PNG does (--output -,
+    // or a path that is standard output, such as a link to /dev/stdout).
+    struct stat stdout_status {
+    }, output_status{};
+    const bool png_on_stdout =
+        options.output == "-" || (::fstat(STDOUT_FILENO, &stdout_status) == 0 &&
+                                  ::stat(options.output.c_str(), &output_status) == 0 &&
+                                  stdout_status.st_dev == output_status.st_dev &&
+                                  stdout_status.st_ino == output_status.st_ino);
     for (const std::string& line : deepgi::describe_auto_lengths(
              settings, renderer.settings_in_use(), deepgi::scene_bounding_radius(scene)))
-        fmt::print(stderr, "scene scale: {}\n", line);
+        fmt::print(png_on_stdout ? stderr : stdout, "scene scale: {}\n", line);
     // A labelled bar for long runs, only where someone watches.
     const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {

@@ -142,7 +142,7 @@ int run(const ReferenceOptions& options) {
     settings.radiosity_radius = settings.render.radiosity.radius;
     for (const std::string& line : deepgi::describe_auto_lengths(
              given, settings.render, deepgi::scene_bounding_radius(scene)))
-        fmt::print(stderr, "scene scale: {}\n", line);
+        fmt::print("scene scale: {}\n", line);
     const auto start = std::chrono::steady_clock::now();
     const deepgi::RayScene rays(scene);
     const deepgi::ReferenceImages images =

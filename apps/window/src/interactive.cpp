@@ -282,7 +282,7 @@ void install_scene(WindowState& state, Scene scene, const std::string& camera) {
     auto renderer = std::make_unique<Renderer>(scene, state.settings, state.loader);
     for (const std::string& line : describe_auto_lengths(
              state.settings, renderer->settings_in_use(), scene_bounding_radius(scene)))
-        fmt::print(stderr, "scene scale: {}\n", line);
+        fmt::print("scene scale: {}\n", line);
     state.renderer = std::move(renderer);
     state.scene = std::move(scene);
     state.light = state.scene.key_light;
