@@ -54,8 +54,21 @@ inline void require_plain_numbers(CLI::App& app) {
     for (CLI::Option* option : app.get_options()) {
         const std::string type = option->get_type_name();
         if (type != "INT" && type != "UINT" && type != "FLOAT") continue;
-        option->check(CLI::Validator(
-            [type](std::string& text) { return plain_number_problem(text, type); }, "", ""));
+        // A transform, not a check: CLI11 hands a check a copy of the text.
+        option->transform(CLI::Validator(
+            [type](std::string& text) {
+                std::string problem = plain_number_problem(text, type);
+                // CLI11 reads an integer with a leading 0 as octal ("010" as
+                // 8): a plain decimal integer loses its leading zeros first.
+                if (problem.empty() && type != "FLOAT") {
+                    const std::size_t sign = text[0] == '-' ? 1 : 0;
+                    const std::size_t first = text.find_first_not_of('0', sign);
+                    text.erase(sign, (first == std::string::npos ? text.size() - 1 : first) - sign);
+                    if (text == "-0") text = "0";
+                }
+                return problem;
+            },
+            "", ""));
     }
     for (CLI::App* subcommand : app.get_subcommands({})) require_plain_numbers(*subcommand);
 }

@@ -151,8 +151,14 @@ TEST_CASE("cli: numbers are whole decimal text; names stay on one line",
     require_bad_input(spiralgen + " discrepancy --n '' --tau 3", "--n");
     // A scene name with a newline: one line, the newline shown escaped.
     require_bad_input(render("--scene \"$(printf 'two\\nlines')\"" + out), "two\\nlines");
-    // Plain numbers still work.
-    REQUIRE(run_command(spiralgen + " discrepancy --n 8 --tau 3").status == 0);
+    // Plain numbers still work, and a leading zero is decimal, not octal.
+    const auto eight = run_command(spiralgen + " discrepancy --n 8 --tau 3");
+    REQUIRE(eight.status == 0);
+    const auto ten = run_command(spiralgen + " discrepancy --n 10 --tau 3");
+    const auto zero_ten = run_command(spiralgen + " discrepancy --n 010 --tau 3");
+    REQUIRE(zero_ten.status == 0);
+    REQUIRE(zero_ten.out == ten.out);
+    REQUIRE(zero_ten.out != eight.out);
     fs::remove_all(dir);
 }
 
