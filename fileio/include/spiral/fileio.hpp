@@ -64,9 +64,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 // commit() syncs them and renames the directory into place. `target` must
 // not exist, or be an empty directory, or hold only regular files whose names
 // end in `replaceable_extension` (one ending, or several separated by spaces:
-// ".pfm .png"; a previous set, swapped out whole and then removed); anything else is refused before a file is written. Until commit the
-// temporary directory and its files are removed by the destructor, by any
-// failure and by SIGINT or SIGTERM.
+// ".pfm .png"; a previous set, swapped out whole and then removed); anything else is refused before
+// a file is written. Until commit the temporary directory and its files are removed by the
+// destructor, by any failure and by SIGINT or SIGTERM.
 class AtomicDirectory {
 public:
     explicit AtomicDirectory(const std::filesystem::path& target,

@@ -14,7 +14,7 @@ DEEPGI_PASS(sao)
 DEEPGI_PASS(ao_temporal)
 DEEPGI_PASS(radiosity_prepare)
 DEEPGI_PASS(radiosity)
-DEEPGI_PASS(blur)  // AO and radiosity E share one bilateral blur (bilateral_blur_pass.cpp)
+DEEPGI_PASS(blur)        // AO and radiosity E share one bilateral blur (bilateral_blur_pass.cpp)
 DEEPGI_PASS(reflection)  // scenes with mirrors only
 DEEPGI_PASS(compose)
 DEEPGI_PASS(tonemap)     // final image only
