@@ -1,5 +1,7 @@
 #include "sao_reference.hpp"
 
+#include "support/textbook_camera.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -263,6 +265,17 @@ float pixel_rotation_angle(std::uint32_t x, std::uint32_t y) {
 }
 
 glm::vec2 camera_ray_scale(const Camera& camera, const RenderSettings& settings) {
+    // From the textbook camera, not the library's projection: the viewport's
+    // half-height spans tan(fov / 2) at unit depth, and the guard band widens
+    // the buffer by the same projection, so NDC 1 lies (H / 2 + g) pixels
+    // from the centre.
+    const TextbookCamera t = textbook_camera(camera, settings);
+    const double per_pixel = double(t.tan_half_fov) / (0.5 * double(t.height));
+    return {float(per_pixel * (0.5 * double(t.width) + double(t.guard))),
+            float(per_pixel * (0.5 * double(t.height) + double(t.guard)))};
+}
+
+glm::vec2 renderer_ray_scale(const Camera& camera, const RenderSettings& settings) {
     const glm::mat4 projection = guard_band_projection(camera, settings);
     return {1.0f / projection[0][0], 1.0f / projection[1][1]};
 }

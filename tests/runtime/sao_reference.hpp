@@ -11,7 +11,9 @@
 //   its per-pixel step offset (0x68e31da4), its golden-angle ray disk, the
 //   solid's minimum of two steps, and the 1e-3 z tolerance behind a stored
 //   plane; the obscurance's epsilon 1e-4 likewise. A change to any of them
-//   in the shader must be made here too; it is not checked independently.
+//   in the shader must be made here too; it is not checked independently;
+// - the SAO comparison takes the camera ray scale as the renderer computes it
+//   (renderer_ray_scale), checked to 1e-6 against the textbook camera's.
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 
@@ -51,7 +53,15 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
 // Level m + 1 of the pyramid from level m by the rotated-grid rule.
 FloatImage reference_pyramid_level(const FloatImage& finer);
 
-// Camera ray scale (1/P00, 1/P11) the renderer uses for these settings.
+// Camera ray scale (1/P00, 1/P11) of the guard-banded projection for these
+// settings, from the textbook camera (tests/support/textbook_camera.hpp).
 glm::vec2 camera_ray_scale(const Camera& camera, const RenderSettings& settings);
+
+// The same scale as the renderer computes it, from guard_band_projection.
+// The per-pixel comparisons of discrete decisions (a tap inside a solid or
+// not) use this one: a 1-ulp difference in the scale flips a handful of
+// thick-spiral taps. The textbook value is checked against it to 1e-6 in
+// sao_test.cpp, so the two describe one camera.
+glm::vec2 renderer_ray_scale(const Camera& camera, const RenderSettings& settings);
 
 }  // namespace deepgi::test

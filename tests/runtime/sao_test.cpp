@@ -35,7 +35,7 @@ FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings
             frame.inputs.back_faces.push_back(
                 renderer.read_pass_output(fmt::format("backface-depth-layer{}", layer)));
     }
-    frame.inputs.ray_scale = camera_ray_scale(scene.default_camera, settings);
+    frame.inputs.ray_scale = renderer_ray_scale(scene.default_camera, settings);
     frame.inputs.near_plane = scene.default_camera.near_plane;
     frame.raw = renderer.read_pass_output("ao-raw");
     frame.blurred = renderer.read_pass_output("ao-blurred");
@@ -522,6 +522,25 @@ TEST_CASE("sao: with AO off the final image does not depend on the estimator", "
     }
     REQUIRE(composed[0].pixels.size() == composed[1].pixels.size());
     CHECK(composed[0].pixels == composed[1].pixels);
+}
+
+TEST_CASE("sao: the mirror's ray scale from the textbook camera equals the library projection's",
+          "[reference]") {
+    // The CPU mirror takes (1/P00, 1/P11) from the textbook camera; the
+    // renderer from guard_band_projection. Both must describe one camera.
+    for (const char* name : {"cornell", "atrium", "warehouse"}) {
+        const Camera camera = make_builtin_scene(name).default_camera;
+        for (const auto& [width, height, guard] :
+             {std::tuple{160, 90, 0.1f}, std::tuple{97, 203, 0.0f}, std::tuple{1280, 720, 0.25f}}) {
+            RenderSettings settings = small_settings(width, height);
+            settings.guard_band_fraction = guard;
+            const glm::vec2 library = renderer_ray_scale(camera, settings);
+            const glm::vec2 textbook = camera_ray_scale(camera, settings);
+            INFO(name << " " << width << "x" << height << " guard " << guard);
+            CHECK(std::abs(textbook.x - library.x) <= 1e-6f * library.x);
+            CHECK(std::abs(textbook.y - library.y) <= 1e-6f * library.y);
+        }
+    }
 }
 
 }  // namespace deepgi::test
