@@ -66,14 +66,14 @@ struct ReflectionParameters {
   int layers;       // 1 or 2 layers marched against
   float thickness;  // m of solid behind a surface with no back face
 
-  float jitter;      // this frame's offset of every pixel's jitter, in [0, 1)
-  int max_level;     // deepest level of the nearest-depth pyramid
-  int radiosity;     // 0: hits take no deep radiosity E
-  int environment;   // 0: no environment (misses are black)
+  int max_level;    // deepest level of the nearest-depth pyramid
+  int radiosity;    // 0: hits take no deep radiosity E
+  int environment;  // 0: no environment (misses are black)
+  int skip_steps;   // samples one long step may skip
 
   float edge_fade_pixels;   // hits this close to the buffer's edge fade out
   float facing_fade_start;  // camera-space z of the ray direction where fading starts
   float facing_fade_end;    // ... and where the hit is gone
-  int skip_steps;           // samples one long step may skip
+  float unused;             // std140 pads the block to whole vec4s
 };
 #endif

@@ -194,7 +194,7 @@ void main() {
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
   vec3 direction = normalize(reflect(normalize(origin), normal));
   float jitter = fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel)) ^ 0x3c6ef372u) >> 8u) * (1.0 / 16777216.0) +
-                       reflection.jitter);
+                       frame.temporal_sample.y);
   float step_length = reflection.distance / float(reflection.steps);
 
   int hit_layer = march_empty;

@@ -39,7 +39,8 @@ static_assert(sizeof(RadiosityGatherParameters) == 32 &&
 static_assert(sizeof(RadiosityPrepareParameters) == 16);
 static_assert(sizeof(BlurParameters) == 16);
 static_assert(sizeof(AntialiasParameters) == 16);
-static_assert(sizeof(ReflectionParameters) == 48 && offsetof(ReflectionParameters, jitter) == 16 &&
+static_assert(sizeof(ReflectionParameters) == 48 &&
+              offsetof(ReflectionParameters, max_level) == 16 &&
               offsetof(ReflectionParameters, edge_fade_pixels) == 32);
 }  // namespace deepgi::shader_shared
 

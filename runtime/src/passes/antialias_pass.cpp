@@ -8,7 +8,9 @@
 namespace deepgi {
 
 Antialias create_antialias(const ShaderLoader& loader) {
-    return {.program = build_fullscreen_program(loader, "antialias.frag")};
+    Antialias antialias;
+    antialias.program = build_fullscreen_program(loader, "antialias.frag");
+    return antialias;
 }
 
 void run_antialias(Antialias& antialias, GLuint source, GLuint target_framebuffer, int width,

@@ -40,16 +40,6 @@ constexpr GLuint image_finer = 0;  // NEAREST_REDUCE's source level
 // none of them can be inside a layer.
 constexpr int skip_steps = 8;
 
-// This frame's offset of every pixel's jitter: the golden-ratio sequence
-// frac(i / phi), which never repeats and keeps any run of frames spread over
-// [0, 1). One function, so the renderer's shared per-frame sequence can take
-// its place when there is one.
-float jitter_offset(std::uint64_t frame_index) {
-    const double golden = 0.6180339887498949;
-    const double value = double(frame_index % 1000003u) * golden;
-    return float(value - std::floor(value));
-}
-
 class ReflectionPass final : public Pass {
 public:
     ReflectionPass(const ShaderLoader& loader, const Scene& scene)
@@ -107,7 +97,6 @@ public:
             gl::check_framebuffer(framebuffer, "reflection nearest depth");
             level_framebuffers_.push_back(std::move(framebuffer));
         }
-        frame_index_ = 0;
     }
 
     void run(FrameResources& frame) override {
@@ -118,15 +107,14 @@ public:
                      .steps = settings.reflection.steps,
                      .layers = settings.reflection.layers,
                      .thickness = settings.ao.thickness,
-                     .jitter = jitter_offset(frame_index_),
                      .max_level = levels_ - 1,
                      .radiosity = settings.radiosity.enabled ? 1 : 0,
                      .environment = settings.environment ? 1 : 0,
+                     .skip_steps = skip_steps,
                      .edge_fade_pixels = std::max(4.0f, 0.5f * float(guard_)),
                      .facing_fade_start = 0.2f,
                      .facing_fade_end = 0.5f,
-                     .skip_steps = skip_steps});
-        ++frame_index_;
+                     .unused = 0.0f});
 
         // The nearest-depth pyramid: level 0 from layer 0, then each level
         // the minimum of the finer one (read as an image, written as a target).
@@ -192,7 +180,6 @@ private:
     int height_ = 0;
     int guard_ = 0;
     int levels_ = 1;
-    std::uint64_t frame_index_ = 0;
 };
 
 }  // namespace
