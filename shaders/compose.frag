@@ -34,7 +34,8 @@ layout(location = 0) out vec3 out_radiance;
 #include "math_constants.glsl"
 #include "environment.glsl"
 
-// Mirror reflections (reflection.frag), bound only while that pass runs: a
+// Mirror reflections (reflection.frag, filtered by reflection_temporal.frag),
+// bound only while those passes run: a
 // mirror pixel is its reflectance (albedo) times the reflected radiance, plus
 // its emission; a polished metal has no diffuse term.
 layout(binding = 3) uniform sampler2D reflection_radiance;

@@ -336,3 +336,79 @@ TEST_CASE(
         }
     }
 }
+
+TEST_CASE(
+    "reflection: under a still camera the filtered reflection is the running mean of every "
+    "frame's march, and under motion this frame's march alone",
+    "[reflection]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("gallery");
+    RenderSettings settings = gallery_settings(2);
+    settings.width = 160;
+    settings.height = 90;
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    std::vector<double> sum;
+    std::size_t checked = 0, agree = 0;
+    double first_step = 0.0, last_step = 0.0;  // mean |change| of the filtered image
+    FloatImage previous;
+    constexpr int frames = 24;
+    for (int frame = 1; frame <= frames; ++frame) {
+        renderer.render(scene.default_camera);
+        const FloatImage raw = renderer.read_pass_output("reflection-radiance");
+        const FloatImage filtered = renderer.read_pass_output("reflection-temporal");
+        const FloatImage hit = renderer.read_pass_output("reflection-hit");
+        sum.resize(raw.pixels.size(), 0.0);
+        double change = 0.0;
+        std::size_t mirrors = 0;
+        for (int y = 0; y < raw.height; ++y) {
+            for (int x = 0; x < raw.width; ++x) {
+                if (hit.at(x, y, 2) < -1.5f) continue;  // not a mirror
+                ++mirrors;
+                for (int c = 0; c < 3; ++c) {
+                    const std::size_t i = (std::size_t(y) * raw.width + x) * 3 + c;
+                    sum[i] += raw.pixels[i];
+                    const double mean = sum[i] / frame;
+                    ++checked;
+                    agree += std::abs(filtered.pixels[i] - mean) <= 1e-4 + 1e-3 * std::abs(mean);
+                    if (frame > 1) change += std::abs(filtered.pixels[i] - previous.pixels[i]);
+                }
+            }
+        }
+        REQUIRE(mirrors > 1000);
+        if (frame == 2) first_step = change / double(mirrors);
+        if (frame == frames) last_step = change / double(mirrors);
+        previous = filtered;
+    }
+    INFO(agree << " of " << checked << " mirror channels are the running mean");
+    CHECK(agree == checked);
+    // The running mean's step falls as 1/n: frame 24's is ~1/12 of frame 2's.
+    INFO("mean change of the filtered reflection: frame 2 " << first_step << ", frame " << frames
+                                                            << " " << last_step);
+    CHECK(first_step > 0.0);
+    CHECK(last_step < first_step / 6.0);
+
+    // A sideways step: every mirror pixel that moved on screen takes this
+    // frame's march alone.
+    Camera moved = scene.default_camera;
+    moved.position.x += 0.05f;
+    renderer.render(moved, CameraMotion::continuous);
+    const FloatImage raw = renderer.read_pass_output("reflection-radiance");
+    const FloatImage filtered = renderer.read_pass_output("reflection-temporal");
+    const FloatImage hit = renderer.read_pass_output("reflection-hit");
+    const FloatImage motion = renderer.read_pass_output("gbuffer-motion-layer0");
+    std::size_t moving = 0, fresh = 0;
+    for (int y = 0; y < raw.height; ++y) {
+        for (int x = 0; x < raw.width; ++x) {
+            if (hit.at(x, y, 2) < -1.5f) continue;
+            if (std::abs(motion.at(x, y, 0)) <= 1.0f / 64.0f &&
+                std::abs(motion.at(x, y, 1)) <= 1.0f / 64.0f)
+                continue;
+            ++moving;
+            bool same = true;
+            for (int c = 0; c < 3; ++c) same = same && filtered.at(x, y, c) == raw.at(x, y, c);
+            fresh += same;
+        }
+    }
+    REQUIRE(moving > 1000);
+    CHECK(fresh == moving);
+}

@@ -40,7 +40,7 @@ public:
                                        .writes = {"compose.radiance"}};
         // Mirror pixels, when the reflection pass runs.
         if (reflections_traced(*scene_, settings))
-            declaration.reads.push_back({reflection_binding, "reflection.radiance"});
+            declaration.reads.push_back({reflection_binding, "reflection.filtered"});
         return declaration;
     }
 
