@@ -330,8 +330,8 @@ TEST_CASE(
                               ShaderLoader::from_build_configuration());
             renderer.render(c.camera);
             renderer.render(c.camera);
-            for (const char* name :
-                 {"reflection-radiance", "reflection-weight", "reflection-hit", "compose-radiance"})
+            for (const char* name : {"reflection-radiance", "reflection-weight", "reflection-hit",
+                                     "reflection-temporal", "compose-radiance"})
                 CHECK(test::all_finite(renderer.read_pass_output(name)));
         }
     }
