@@ -21,6 +21,9 @@ layout(binding = 19) uniform sampler2D history_key;
 
 layout(location = 4) uniform int layer;
 layout(location = 29) uniform float alpha;
+// 1 on the frame the key light changed: every pixel blends as a moving one,
+// so the running mean of the old lighting does not linger for ~CAP frames.
+layout(location = 30) uniform int lighting_changed;
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 layout(location = 1) out vec4 out_key;         // history_reprojection.glsl
@@ -39,7 +42,7 @@ void main() {
   Accumulation result;
   if (find_history(pixel, layer, normal, gbuffer_motion, history_key, texel, key)) {
     result = accumulate(raw, texelFetch(history_irradiance, texel, 0), key.w, alpha,
-                        history_still(pixel, layer, gbuffer_motion));
+                        lighting_changed == 0 && history_still(pixel, layer, gbuffer_motion));
   } else {
     result = accumulate(raw, raw, 0.0, alpha, false);
   }

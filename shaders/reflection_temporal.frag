@@ -4,7 +4,7 @@
 // offset from the frame sequence, so at a still camera the frames are samples
 // of the integral over the offsets and their running mean converges to it
 // (temporal_accumulation.glsl, the same cap as AO and radiosity).
-// Under motion the history is dropped: the reflected point moves with the
+// Under motion, and on the frame the key light changes, the history is dropped: the reflected point moves with the
 // reflected geometry, not with the mirror's surface, so the mirror's motion
 // vectors would smear the reflection into a trail.
 #include "frame_constants.glsl"
@@ -20,6 +20,10 @@ layout(binding = 3) uniform sampler2D raw_reflection;  // rgb radiance, a hit we
 layout(binding = 4) uniform sampler2D history_reflection;
 layout(binding = 5) uniform sampler2D history_key;
 
+// 1 on the frame the key light changed: the lit radiance the history holds is
+// stale, so this frame's march stands alone.
+layout(location = 0) uniform int lighting_changed;
+
 layout(location = 0) out vec4 out_reflection;  // the filtered rgb and weight
 layout(location = 1) out vec4 out_key;         // history_reprojection.glsl
 
@@ -34,7 +38,7 @@ void main() {
   ivec2 texel;
   vec4 key;
   float count = 1.0;
-  if (history_still(pixel, 0, gbuffer_motion) &&
+  if (lighting_changed == 0 && history_still(pixel, 0, gbuffer_motion) &&
       find_history(pixel, 0, normal, gbuffer_motion, history_key, texel, key)) {
     Accumulation result = accumulate(raw, texelFetch(history_reflection, texel, 0), key.w, 1.0, true);
     out_reflection = result.mean;

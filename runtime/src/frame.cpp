@@ -364,6 +364,9 @@ void Renderer::set_key_light(const KeyLight& light) {
     // Stored as given: the frame constants and the shadow projection
     // normalise the direction themselves, and renormalising here could move
     // the last bit of an already unit vector (and with it pixels).
+    // A changed light changes every lit radiance the temporal filters hold;
+    // they see it through the version (FrameResources::lighting_version).
+    if (!(state.scene.key_light == light)) ++state.frame.lighting_version;
     state.scene.key_light = light;
     state.frame.shadow = shadow_projection(state.scene, state.settings.shadow_map_size);
 }

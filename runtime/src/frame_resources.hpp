@@ -52,6 +52,12 @@ public:
     // so motion is zero on the first frame after an invalidation.
     Camera previous_camera;
     GLuint empty_vertex_array = 0;
+    // Counts changes of the key light (Renderer::set_key_light). A pass whose
+    // history holds lit radiance (radiosity, reflections) keeps the version
+    // it last ran with: on a change it treats every pixel as moving for one
+    // frame, so the new lighting takes over at the motion blend's pace rather
+    // than the still running mean's hundreds of frames.
+    std::uint64_t lighting_version = 0;
 
     // ---- named textures of this frame ----
     // Throws GraphicsError when the running pass did not declare `name` as a

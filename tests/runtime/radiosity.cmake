@@ -30,3 +30,12 @@ add_test(NAME deepgi_ao_temporal_targets_missed
   COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "AO temporal targets" ao-temporal-targets.md)
 set_tests_properties(deepgi_ao_temporal_targets_missed PROPERTIES LABELS "runtime;sao"
   FIXTURES_REQUIRED ao_temporal_figures SKIP_RETURN_CODE 77)
+
+# The temporal filters under a light change (labels runtime and radiosity).
+add_executable(deepgi_lighting_change_tests lighting_change_test.cpp)
+target_link_libraries(deepgi_lighting_change_tests PRIVATE deepgi_sao_reference spiral_catch_main)
+target_compile_definitions(deepgi_lighting_change_tests PRIVATE
+  SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
+  SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
+add_test(NAME deepgi_lighting_change COMMAND deepgi_lighting_change_tests "[radiosity]")
+set_tests_properties(deepgi_lighting_change PROPERTIES LABELS "runtime;radiosity" TIMEOUT 300)

@@ -92,6 +92,8 @@ struct KeyLight {
     // Spot and point: the distance (m) where the light ends, reached smoothly
     // by the window max(0, 1 - (d / range)^4) of KHR_lights_punctual; 0: unlimited.
     float range = 0.0f;
+
+    friend bool operator==(const KeyLight&, const KeyLight&) = default;
 };
 
 // A perspective camera placed in a scene file, in file order of traversal.

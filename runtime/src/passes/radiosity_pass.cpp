@@ -27,6 +27,7 @@ constexpr GLuint prepared_normal_binding = 22;
 // Uniform locations: the layer (both shaders), the temporal blend weight.
 constexpr GLint layer_location = 4;
 constexpr GLint alpha_location = 29;
+constexpr GLint lighting_changed_location = 30;  // int uniform: 1 the frame the light changed
 
 std::string history_name(int layer) {
     return fmt::format("radiosity-layer{}", layer);
@@ -114,6 +115,9 @@ public:
         const GLuint temporal = temporal_.get();
         glUseProgram(temporal);
         glProgramUniform1f(temporal, alpha_location, settings.alpha);
+        glProgramUniform1i(temporal, lighting_changed_location,
+                           frame.lighting_version != lighting_version_ ? 1 : 0);
+        lighting_version_ = frame.lighting_version;
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             const HistoryPair& irradiance = frame.history(history_name(layer));
             glBindTextureUnit(raw_binding, raw_[layer].get());
@@ -150,6 +154,7 @@ public:
     }
 
 private:
+    std::uint64_t lighting_version_ = 0;  // FrameResources::lighting_version at the last run
     gl::Program gather_;
     ParameterBlock<shader_shared::RadiosityGatherParameters> parameters_;
     gl::Program temporal_;

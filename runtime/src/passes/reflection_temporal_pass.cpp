@@ -17,6 +17,7 @@ constexpr GLuint depth_binding = 2;
 constexpr GLuint raw_binding = 3;
 constexpr GLuint history_binding = 4;
 constexpr GLuint history_key_binding = 5;
+constexpr GLint lighting_changed_location = 0;  // int uniform: 1 the frame the light changed
 
 constexpr const char* radiance_history = "reflection-temporal";  // filtered radiance, weight
 constexpr const char* key_history = "reflection-temporal-key";
@@ -64,6 +65,9 @@ public:
     void run(FrameResources& frame) override {
         const HistoryPair& radiance = frame.history(radiance_history);
         glUseProgram(program_.get());
+        glProgramUniform1i(program_.get(), lighting_changed_location,
+                           frame.lighting_version != lighting_version_ ? 1 : 0);
+        lighting_version_ = frame.lighting_version;
         glBindTextureUnit(history_binding, radiance.previous());
         glBindTextureUnit(history_key_binding, frame.history(key_history).previous());
         begin_fullscreen(framebuffers_[radiance.written_slot].get(), width_, height_);
@@ -83,8 +87,9 @@ public:
 private:
     const Scene* scene_;  // the renderer's own copy, which outlives its passes
     gl::Program program_;
-    gl::Framebuffer framebuffers_[2];  // per history slot: radiance + key
-    GLuint written_ = 0;               // this frame's slot
+    gl::Framebuffer framebuffers_[2];     // per history slot: radiance + key
+    GLuint written_ = 0;                  // this frame's slot
+    std::uint64_t lighting_version_ = 0;  // FrameResources::lighting_version at the last run
     int width_ = 0;
     int height_ = 0;
 };
