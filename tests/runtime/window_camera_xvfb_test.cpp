@@ -10,8 +10,6 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -66,10 +64,7 @@ void render_headless(const fs::path& dir, const std::string& name, const std::st
 
 TEST_CASE("window: mouse-look, held keys and a resize give the camera a headless render shows",
           "[runtime][window][xvfb]") {
-    if (::access(DEEPGI_XVFB_RUN, X_OK) != 0) {
-        std::puts("xvfb-run not found: the scripted window test is skipped");
-        std::exit(77);
-    }
+    spiral::test::skip_unless_executable(DEEPGI_XVFB_RUN);
     const fs::path dir = spiral::test::make_scratch_dir("deepgi-window-camera");
     const fs::path script = dir / "script.txt";
     // Frames count from 0; commands of frame N take effect from frame N+1.
