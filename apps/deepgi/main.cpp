@@ -134,8 +134,7 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     deepgi::SceneLimits limits;
     for (const auto& assignment : options.scene_limits) deepgi::set_scene_limit(limits, assignment);
     deepgi::Scene scene = deepgi::load_scene(options.scene, limits);
-    if (!options.camera.empty())
-        scene.default_camera = deepgi::find_file_camera(scene, options.camera);
+    scene.default_camera = deepgi::select_camera(scene, options.camera);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
                                      options.output);
@@ -244,8 +243,9 @@ int main(int argc, char** argv) {
                    "Pass timing: " + deepgi::enum_name_list<deepgi::TimingMode>() +
                        " (cpu: glFinish and a CPU clock; gpu: timer queries)");
     app.add_option("--camera", options.camera,
-                   "View through the glTF file's camera of this name or index; in the window, R "
-                   "resets to it")
+                   "View through the glTF file's camera of this name or index, or through "
+                   "pose:X,Y,Z,YAW,PITCH,FOVY,NEAR (degrees; what a window screenshot's "
+                   "camera.txt holds); in the window, R resets to it")
         ->default_str("the file's first perspective camera, else a fitted view");
     app.add_flag("--camera-path", options.camera_path,
                  "Move along the scene's camera path, one step per frame");
@@ -253,7 +253,7 @@ int main(int argc, char** argv) {
                  "Print the last frame's per-pass milliseconds");
     app.add_option("--script", options.script,
                    "Window only: run the window from a script of per-frame commands (set, key, "
-                   "screenshot, drop, quit; docs/deepgi.md)")
+                   "hold, drag, resize, capture, screenshot, drop, quit; docs/deepgi.md)")
         ->default_str("none");
     app.add_option("--screenshot-dir", options.screenshot_directory,
                    "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory")

@@ -124,6 +124,17 @@ TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runti
     }
     require_one_line_error("--headless --size 160x90 --camera 0",
                            "scene 'cornell' has no such perspective camera (it has none)");
+    {
+        // A pose is checked before the window opens too.
+        const RunResult window = run_deepgi("--size 160x90 --camera pose:0,1,3,0,0,60");
+        INFO(window.stderr_text);
+        REQUIRE(window.status == 2);
+        REQUIRE(window.stderr_text ==
+                "deepgi: error: --camera 'pose:0,1,3,0,0,60': expected 7 values: "
+                "pose:X,Y,Z,YAW,PITCH,FOVY,NEAR (degrees, scene units)\n");
+    }
+    require_one_line_error("--headless --size 160x90 --camera pose:0,1,3,0,95,60,0.05",
+                           "PITCH must be between -90 and 90 degrees (exclusive)");
     const fs::path jpeg = scratch() / "image.jpg";
     const RunResult result =
         run_deepgi("--headless --size 160x90 --output '" + jpeg.string() + "'");

@@ -62,7 +62,8 @@ TEST_CASE("window: script errors name the file, the line and the problem", "[run
     CHECK(script_error("frame 5 quit\nframe 4 quit") ==
           "s.txt:2: frame 4 comes after frame 5; frames must not decrease");
     CHECK(script_error("frame 1 jump") ==
-          "s.txt:1: unknown command 'jump' (set, key, screenshot, drop, quit)");
+          "s.txt:1: unknown command 'jump' (set, key, hold, drag, resize, capture, "
+          "screenshot, drop, quit)");
     CHECK(script_error("frame 1 set ao-radius -2") ==
           "s.txt:1: --ao-radius must be a finite number of metres > 0, or auto");
     CHECK(script_error("frame 1 set ao-radius big") ==
@@ -94,7 +95,8 @@ TEST_CASE("window: script errors name the file, the line and the problem", "[run
     CHECK(script_error("frame 1 quit now") == "s.txt:1: quit takes no arguments");
     // The first bad line is reported, not a later one.
     CHECK(script_error("frame 1 quit\n\n# fine\nframe 2 nope\nframe 1 quit") ==
-          "s.txt:4: unknown command 'nope' (set, key, screenshot, drop, quit)");
+          "s.txt:4: unknown command 'nope' (set, key, hold, drag, resize, capture, "
+          "screenshot, drop, quit)");
 }
 
 TEST_CASE("window: a bad --script stops deepgi before a window opens", "[runtime][window]") {
@@ -282,5 +284,122 @@ TEST_CASE(
             CHECK(result.err.rfind(fmt::format("deepgi: error: --{} must be ", row.name), 0) == 0);
             CHECK(spiral::test::count_lines(result.err) == 1);
         }
+    }
+}
+
+TEST_CASE("window: hold, drag, resize and capture parse, and their errors name the line",
+          "[runtime][window]") {
+    const auto commands = parse_script(
+        "frame 1 hold W 3\n"
+        "frame 1 drag 40 -15.5\n"
+        "frame 2 resize 320 180\n"
+        "frame 3 capture out/w.PNG\n",
+        "s.txt");
+    REQUIRE(commands.size() == 4);
+    CHECK(commands[0].kind == ScriptCommand::Kind::hold);
+    CHECK(commands[0].name == "W");
+    CHECK(commands[0].numbers[0] == 3.0);
+    CHECK(commands[1].kind == ScriptCommand::Kind::drag);
+    CHECK(commands[1].numbers[0] == 40.0);
+    CHECK(commands[1].numbers[1] == -15.5);
+    CHECK(commands[2].kind == ScriptCommand::Kind::resize);
+    CHECK(commands[2].numbers[0] == 320.0);
+    CHECK(commands[2].numbers[1] == 180.0);
+    CHECK(commands[3].kind == ScriptCommand::Kind::capture);
+    CHECK(commands[3].values == std::vector<std::string>{"out/w.PNG"});
+
+    CHECK(script_error("frame 1 hold G 3") ==
+          "s.txt:1: hold: 'G' is not a movement key (W, A, S, D, Q, E)");
+    CHECK(script_error("frame 1 hold W 0") ==
+          "s.txt:1: hold: frames '0' is not a whole number from 1 to 100000");
+    CHECK(script_error("frame 1 hold W") == "s.txt:1: hold takes a key and a number of frames");
+    CHECK(script_error("frame 1 drag 1 nan") == "s.txt:1: drag: 'nan' is not a finite number");
+    CHECK(script_error("frame 1 drag 1") == "s.txt:1: drag takes DX DY in pixels");
+    CHECK(script_error("frame 1 resize 0 10") ==
+          "s.txt:1: resize: width '0' is not a whole number from 1 to 16384");
+    CHECK(script_error("frame 1 resize 10 2.5") ==
+          "s.txt:1: resize: height '2.5' is not a whole number from 1 to 16384");
+    CHECK(script_error("frame 1 capture out/w.jpg") ==
+          "s.txt:1: capture: the path must end in .png");
+}
+
+TEST_CASE("window: a drag turns the camera 0.004 rad a pixel, a held key moves one step",
+          "[runtime][window]") {
+    Camera camera;
+    camera.yaw = 0.25f;
+    camera.pitch = 0.1f;
+    mouse_look(camera, 100.0f, 50.0f);  // right and down
+    CHECK(camera.yaw == Approx(0.25 + 0.4).margin(1e-6));
+    CHECK(camera.pitch == Approx(0.1 - 0.2).margin(1e-6));
+    mouse_look(camera, 0.0f, -10000.0f);  // far up: held at the limit
+    CHECK(camera.pitch == max_look_pitch);
+
+    Camera level;  // yaw 0 looks down -Z
+    MoveKeys keys;
+    *move_key_flag(keys, "W") = true;
+    fly_move(level, keys, 0.5f);
+    CHECK(level.position.z == Approx(-0.5f));
+    CHECK(level.position.x == Approx(0.0f).margin(1e-7));
+    MoveKeys right_up;
+    *move_key_flag(right_up, "D") = true;
+    *move_key_flag(right_up, "E") = true;
+    const glm::vec3 before = level.position;
+    fly_move(level, right_up, 1.0f);  // +X and +Y together, one step long
+    CHECK(level.position.x - before.x == Approx(std::sqrt(0.5f)));
+    CHECK(level.position.y - before.y == Approx(std::sqrt(0.5f)));
+    CHECK(move_key_flag(keys, "G") == nullptr);
+    fly_move(level, MoveKeys{}, 1.0f);
+    CHECK(level.position.x - before.x == Approx(std::sqrt(0.5f)));
+}
+
+TEST_CASE("camera: a pose parses, refuses bad values and round-trips bit for bit",
+          "[runtime][window]") {
+    const Camera camera = parse_camera_pose("pose:1,2.5,-3,90,-30,60,0.05");
+    CHECK(camera.position == glm::vec3(1.0f, 2.5f, -3.0f));
+    CHECK(camera.yaw == Approx(std::acos(-1.0) / 2.0));
+    CHECK(camera.pitch == Approx(-std::acos(-1.0) / 6.0));
+    CHECK(camera.vertical_fov == Approx(std::acos(-1.0) / 3.0));
+    CHECK(camera.near_plane == 0.05f);
+
+    auto error = [](const std::string& text) {
+        try {
+            parse_camera_pose(text);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(error("pose:1,2,3,0,0,60") ==
+          "--camera 'pose:1,2,3,0,0,60': expected 7 values: pose:X,Y,Z,YAW,PITCH,FOVY,NEAR "
+          "(degrees, scene units)");
+    CHECK(error("pose:1,2,3,0,0,60,0.1,4") ==
+          "--camera 'pose:1,2,3,0,0,60,0.1,4': expected 7 values: pose:X,Y,Z,YAW,PITCH,FOVY,NEAR "
+          "(degrees, scene units)");
+    CHECK(error("pose:1,x,3,0,0,60,0.1") ==
+          "--camera 'pose:1,x,3,0,0,60,0.1': value 2 'x' is not a finite number "
+          "(pose:X,Y,Z,YAW,PITCH,FOVY,NEAR)");
+    CHECK(error("pose:1,inf,3,0,0,60,0.1").find("value 2 'inf' is not a finite number") !=
+          std::string::npos);
+    CHECK(error("pose:0,0,0,0,90,60,0.1").find("PITCH must be between -90 and 90") !=
+          std::string::npos);
+    CHECK(error("pose:0,0,0,0,0,180,0.1").find("FOVY must be between 0 and 180") !=
+          std::string::npos);
+    CHECK(error("pose:0,0,0,0,0,60,0").find("NEAR must be > 0") != std::string::npos);
+
+    // Angles a mouse left anywhere, written in degrees, come back the same floats.
+    for (float yaw : {0.0f, 0.1f + 40 * 0.004f, -7.3f, 123.456f}) {
+        Camera original;
+        original.position = glm::vec3(0.0513866693f, 1.0f / 3.0f, -1234.5678f);
+        original.yaw = yaw;
+        original.pitch = -1.5f + 0.004f * 7;
+        original.vertical_fov = 0.7f;
+        original.near_plane = 0.0123f;
+        const Camera back = parse_camera_pose(format_camera_pose(original));
+        INFO(format_camera_pose(original));
+        CHECK(back.position == original.position);
+        CHECK(back.yaw == original.yaw);
+        CHECK(back.pitch == original.pitch);
+        CHECK(back.vertical_fov == original.vertical_fov);
+        CHECK(back.near_plane == original.near_plane);
     }
 }

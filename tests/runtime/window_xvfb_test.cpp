@@ -37,6 +37,7 @@ double covered_mean(const deepgi::FloatImage& image, const deepgi::FloatImage& d
 
 TEST_CASE("window: a scripted run under Xvfb changes the AO radius and the screenshots show it",
           "[runtime][window][xvfb]") {
+    spiral::test::skip_unless_executable(DEEPGI_XVFB_RUN);
     const fs::path dir = spiral::test::make_scratch_dir("deepgi-window");
     const fs::path script = dir / "script.txt";
     const fs::path dated = dir / "dated";
@@ -109,6 +110,7 @@ TEST_CASE("window: a scripted run under Xvfb changes the AO radius and the scree
 
 TEST_CASE("window: a dropped file that is not glTF keeps the scene and reports why",
           "[runtime][window][xvfb]") {
+    spiral::test::skip_unless_executable(DEEPGI_XVFB_RUN);
     const fs::path dir = spiral::test::make_scratch_dir("deepgi-window-drop");
     const fs::path script = dir / "script.txt";
     const fs::path junk = dir / "junk.gltf";

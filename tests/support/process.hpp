@@ -3,7 +3,9 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +47,14 @@ inline ProcessResult run_command(const std::string& command_line) {
     result.err = read_file(err);
     std::filesystem::remove_all(dir);
     return result;
+}
+
+// Ends the test program with ctest's skip code 77 when `program` cannot be
+// run (e.g. xvfb-run removed after configuring): a skip, never a silent pass.
+inline void skip_unless_executable(const char* program) {
+    if (::access(program, X_OK) == 0) return;
+    std::printf("%s not found: skipped (exit 77)\n", program);
+    std::exit(77);
 }
 
 inline int count_lines(const std::string& text) {

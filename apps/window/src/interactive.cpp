@@ -6,6 +6,7 @@
 #include "deepgi/errors.hpp"
 #include "deepgi/image_io.hpp"
 #include "deepgi/window_controls.hpp"
+#include "window_state.hpp"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
@@ -38,6 +39,12 @@ void render_hidden_window(const Scene& scene, const RenderSettings& settings, in
 namespace {
 
 namespace fs = std::filesystem;
+
+// A movement key a script holds for a number of frames.
+struct ScriptHold {
+    std::string key;
+    int frames_left = 0;
+};
 
 // What the GLFW callbacks hand to the frame loop.
 struct Inbox {
@@ -111,100 +118,32 @@ void on_drop(GLFWwindow* window, int count, const char** paths) {
     for (int i = 0; i < count; ++i) inbox->dropped.emplace_back(paths[i]);
 }
 
-struct FlyCamera {
-    Camera camera;
-    float speed = 1.0f;  // metres per second
-    double last_x = 0.0;
-    double last_y = 0.0;
-    bool looking = false;
-};
+// Movement keys held in the window or by a script's `hold`.
+MoveKeys held_move_keys(GLFWwindow* window, const std::vector<ScriptHold>& holds) {
+    MoveKeys keys;
+    if (!ImGui::GetIO().WantCaptureKeyboard) {
+        for (const char* key : {"W", "A", "S", "D", "Q", "E"})
+            if (glfwGetKey(window, GLFW_KEY_A + (key[0] - 'A')) == GLFW_PRESS)
+                *move_key_flag(keys, key) = true;
+    }
+    for (const ScriptHold& hold : holds) *move_key_flag(keys, hold.key) = true;
+    return keys;
+}
 
-void update_fly_camera(GLFWwindow* window, FlyCamera& fly, float seconds) {
-    const ImGuiIO& io = ImGui::GetIO();
+void update_fly_camera(GLFWwindow* window, FlyCamera& fly, const MoveKeys& keys, float seconds) {
     double x = 0.0;
     double y = 0.0;
     glfwGetCursorPos(window, &x, &y);
     const bool right_button = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    if (right_button && !io.WantCaptureMouse) {
-        if (fly.looking) {
-            const float radians_per_pixel = 0.004f;
-            fly.camera.yaw += float(x - fly.last_x) * radians_per_pixel;
-            fly.camera.pitch = std::clamp(
-                fly.camera.pitch - float(y - fly.last_y) * radians_per_pixel, -1.5f, 1.5f);
-        }
+    if (right_button && !ImGui::GetIO().WantCaptureMouse) {
+        if (fly.looking) mouse_look(fly.camera, float(x - fly.last_x), float(y - fly.last_y));
         fly.looking = true;
     } else {
         fly.looking = false;
     }
     fly.last_x = x;
     fly.last_y = y;
-    if (io.WantCaptureKeyboard) return;
-    const glm::vec3 forward = camera_forward(fly.camera);
-    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
-    glm::vec3 move(0.0f);
-    if (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) move += forward;
-    if (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS) move -= forward;
-    if (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) move += right;
-    if (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS) move -= right;
-    if (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) move.y += 1.0f;
-    if (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS) move.y -= 1.0f;
-    if (glm::length(move) > 0.0f)
-        fly.camera.position += glm::normalize(move) * fly_step(seconds, fly.speed);
-}
-
-// A combo box over an enum's name table; true when the value changed.
-template <class Enum>
-bool enum_combo(const char* label, Enum& value) {
-    bool changed = false;
-    if (!ImGui::BeginCombo(label, std::string(to_string(value)).c_str())) return false;
-    for (const auto& row : enum_names(Enum{})) {
-        if (ImGui::Selectable(std::string(row.name).c_str(), row.value == value)) {
-            changed = row.value != value;
-            value = row.value;
-        }
-    }
-    ImGui::EndCombo();
-    return changed;
-}
-
-// Sliders for every numeric setting of one group, from the settings table. A
-// length that follows the scene (`auto`) shows the value in use, greyed, and
-// a checkbox; unticking it keeps that value as an explicit one.
-void numeric_sliders(std::string_view group, RenderSettings& settings,
-                     const RenderSettings& in_use) {
-    for (const NumericSetting& setting : numeric_settings()) {
-        if (setting.group != group) continue;
-        ImGui::PushID(setting.name.data(), setting.name.data() + setting.name.size());
-        const std::string label = std::string(setting.label);
-        const ImGuiSliderFlags flags = setting.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
-        if (accepts_auto(setting)) {
-            bool follows_scene = setting.get(settings) == auto_length;
-            if (ImGui::Checkbox("auto", &follows_scene))
-                setting.set(settings, follows_scene ? auto_length : setting.get(in_use));
-            if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
-            ImGui::SameLine();
-        }
-        if (accepts_auto(setting) && setting.get(settings) == auto_length) {
-            float value = setting.get(in_use);
-            ImGui::BeginDisabled();
-            ImGui::SliderFloat(label.c_str(), &value, setting.slider_min, setting.slider_max,
-                               "%.4g", flags);
-            ImGui::EndDisabled();
-        } else if (setting.integer) {
-            int value = int(std::lround(setting.get(settings)));
-            if (ImGui::SliderInt(label.c_str(), &value, int(setting.slider_min),
-                                 int(setting.slider_max), "%d", flags))
-                setting.set(settings, float(value));
-        } else {
-            float value = setting.get(settings);
-            if (ImGui::SliderFloat(label.c_str(), &value, setting.slider_min, setting.slider_max,
-                                   "%.3f", flags))
-                setting.set(settings, value);
-        }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("--%s", std::string(setting.name).c_str());
-        ImGui::PopID();
-    }
+    fly_move(fly.camera, keys, fly_step(seconds, fly.speed));
 }
 
 // "deepgi-2026-11-23_14-05-09" in local time; "-2", "-3" ... when taken.
@@ -220,8 +159,12 @@ fs::path dated_folder(const fs::path& parent) {
 }
 
 // final.png plus every pass output as PFM, all appearing at once.
-void write_screenshot(const Renderer& renderer, const fs::path& folder) {
+// camera.txt holds the camera the image was rendered with, as --camera takes
+// it, so that `deepgi --headless --camera "$(cat camera.txt)"` renders the view.
+void write_screenshot(const Renderer& renderer, const Camera& camera, const fs::path& folder) {
     spiral::fileio::AtomicDirectory out(folder);
+    const std::string pose = format_camera_pose(camera) + "\n";
+    out.write_file("camera.txt", pose.data(), pose.size());
     const RenderSettings& settings = renderer.settings();
     const auto png = encode_png(settings.width, settings.height, renderer.read_output_rgba8());
     out.write_file("final.png", png.data(), png.size());
@@ -230,66 +173,6 @@ void write_screenshot(const Renderer& renderer, const fs::path& folder) {
         out.write_file(name + ".pfm", pfm.data(), pfm.size());
     }
     out.commit();
-}
-
-// Small horizontal bars, one per pass, scaled to the slowest; total below.
-void timing_chart(const Renderer& renderer) {
-    const auto& timings = renderer.last_timings();
-    double total = 0.0;
-    double slowest = 1e-9;
-    for (const auto& timing : timings) {
-        total += timing.milliseconds;
-        slowest = std::max(slowest, timing.milliseconds);
-    }
-    ImGui::Text("per pass (%s)", renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish"
-                                                                  : "GL timer queries");
-    for (const auto& timing : timings) {
-        const std::string overlay = fmt::format("{} {:.2f} ms", timing.pass, timing.milliseconds);
-        ImGui::ProgressBar(float(timing.milliseconds / slowest),
-                           ImVec2(-1.0f, ImGui::GetTextLineHeight()), overlay.c_str());
-    }
-    ImGui::Text("total %.2f ms (%.1f fps at this cost)", total, total > 0.0 ? 1000.0 / total : 0.0);
-}
-
-// Everything the window owns besides GLFW and ImGui.
-struct WindowState {
-    explicit WindowState(const WindowOptions& window_options) : options(window_options) {}
-    const WindowOptions& options;
-    ShaderLoader loader = ShaderLoader::from_build_configuration();
-    Scene scene;
-    std::unique_ptr<Renderer> renderer;
-    RenderSettings settings;
-    KeyLight light;
-    LightAngles light_angles_edit;
-    Camera home_camera;  // what "reset camera" returns to
-    FlyCamera fly;
-    KeyState keys;
-    bool show_panel = true;
-    bool quit = false;
-    std::string scene_error;  // last failed load, shown in red until the next load
-    std::string settings_error;
-    std::string screenshot_message;
-};
-
-float scene_size(const Scene& scene) {
-    return std::max(glm::length(scene.bounds.max - scene.bounds.min), 1e-3f);
-}
-
-// Replaces scene and renderer only when both were made: a bad file keeps the
-// old scene on screen.
-void install_scene(WindowState& state, Scene scene, const std::string& camera) {
-    const Camera home = camera.empty() ? scene.default_camera : find_file_camera(scene, camera);
-    auto renderer = std::make_unique<Renderer>(scene, state.settings, state.loader);
-    for (const std::string& line : describe_auto_lengths(
-             state.settings, renderer->settings_in_use(), scene_bounding_radius(scene)))
-        fmt::print("scene scale: {}\n", line);
-    state.renderer = std::move(renderer);
-    state.scene = std::move(scene);
-    state.light = state.scene.key_light;
-    state.light_angles_edit = light_angles(state.light.direction);
-    state.home_camera = home;
-    state.fly.camera = home;
-    state.fly.speed = 0.25f * scene_size(state.scene);
 }
 
 void load_dropped(WindowState& state, const std::string& path) {
@@ -304,7 +187,7 @@ void load_dropped(WindowState& state, const std::string& path) {
 
 void take_screenshot(WindowState& state, const fs::path& folder) {
     try {
-        write_screenshot(*state.renderer, folder);
+        write_screenshot(*state.renderer, state.rendered_camera, folder);
         state.screenshot_message = fmt::format("wrote {}", folder.string());
         fmt::print("deepgi: screenshot {}\n", folder.string());
     } catch (const std::exception& error) {
@@ -314,7 +197,10 @@ void take_screenshot(WindowState& state, const fs::path& folder) {
 }
 
 void handle_action(WindowState& state, KeyAction action) {
-    if (apply_key_action(action, state.settings, state.keys)) return;
+    if (apply_key_action(action, state.settings, state.keys)) {
+        set_active_section(state, section_of_action(action, state.settings));
+        return;
+    }
     switch (action) {
         case KeyAction::reset_camera:
             state.fly.camera = state.home_camera;
@@ -333,110 +219,11 @@ void handle_action(WindowState& state, KeyAction action) {
     }
 }
 
-void draw_panel(WindowState& state, RenderSettings& wanted) {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    const float window_height = ImGui::GetIO().DisplaySize.y;
-    ImGui::SetNextWindowSize(ImVec2(440, std::max(200.0f, window_height - 16.0f)),
-                             ImGuiCond_FirstUseEver);
-    // Resizable and collapsible (title bar arrow); F1 hides it altogether.
-    if (!ImGui::Begin("deepgi (F1 hides)")) {
-        ImGui::End();
-        return;
-    }
-    // Room for the longest label right of the widgets, however wide the panel.
-    ImGui::PushItemWidth(-150.0f);
-    const auto builtin = builtin_scene_names();
-    if (ImGui::BeginCombo("scene", state.scene.name.c_str())) {
-        for (const std::string& name : builtin) {
-            if (ImGui::Selectable(name.c_str(), name == state.scene.name) &&
-                name != state.scene.name) {
-                try {
-                    install_scene(state, make_builtin_scene(name), {});
-                    state.scene_error.clear();
-                } catch (const std::exception& error) {
-                    state.scene_error = error.what();
-                }
-            }
-        }
-        ImGui::EndCombo();
-    }
-    ImGui::TextDisabled("drop a .gltf/.glb file onto the window to load it");
-    if (!state.scene_error.empty())
-        ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%s", state.scene_error.c_str());
-    if (!state.settings_error.empty())
-        ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%s", state.settings_error.c_str());
-    if (!state.screenshot_message.empty())
-        ImGui::TextWrapped("%s", state.screenshot_message.c_str());
-
-    if (ImGui::CollapsingHeader("frame", ImGuiTreeNodeFlags_DefaultOpen)) {
-        enum_combo("generator (G)", wanted.generator);
-        enum_combo("view (V)", wanted.view);
-        enum_combo("timing", wanted.timing);
-        numeric_sliders("frame", wanted, state.renderer->settings_in_use());
-    }
-    if (ImGui::CollapsingHeader("ambient occlusion", ImGuiTreeNodeFlags_DefaultOpen)) {
-        enum_combo("method (M)", wanted.ao.method);
-        numeric_sliders("ao", wanted, state.renderer->settings_in_use());
-    }
-    if (ImGui::CollapsingHeader("radiosity and temporal filter", ImGuiTreeNodeFlags_DefaultOpen)) {
-        enum_combo("radiosity method", wanted.radiosity.method);
-        numeric_sliders("radiosity", wanted, state.renderer->settings_in_use());
-    }
-    if (ImGui::CollapsingHeader("bilateral blur (AO and radiosity)"))
-        numeric_sliders("blur", wanted, state.renderer->settings_in_use());
-    if (ImGui::CollapsingHeader("mirror reflections")) {
-        ImGui::Checkbox("reflections", &wanted.reflection.enabled);
-        numeric_sliders("reflection", wanted, state.renderer->settings_in_use());
-    }
-    if (ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
-        KeyLight& light = state.light;
-        ImGui::Text("%s key light", light.kind == LightKind::spot    ? "spot"
-                                    : light.kind == LightKind::point ? "point"
-                                                                     : "directional");
-        ImGui::SliderFloat("intensity", &light.intensity, 0.0f, 50.0f, "%.2f",
-                           ImGuiSliderFlags_AlwaysClamp);
-        ImGui::ColorEdit3("colour", &light.colour.x, ImGuiColorEditFlags_Float);
-        bool turned = ImGui::SliderAngle("yaw", &state.light_angles_edit.yaw, -180.0f, 180.0f);
-        turned |= ImGui::SliderAngle("pitch (below horizon)", &state.light_angles_edit.pitch,
-                                     -90.0f, 90.0f);
-        if (turned) light.direction = light_direction(state.light_angles_edit);
-        if (light.kind != LightKind::directional) {
-            const Bounds& bounds = state.scene.bounds;
-            for (int axis = 0; axis < 3; ++axis) {
-                const char* labels[] = {"position x", "position y", "position z"};
-                ImGui::SliderFloat(labels[axis], &light.position[axis], bounds.min[axis],
-                                   bounds.max[axis]);
-            }
-        }
-        light.colour = glm::max(light.colour, glm::vec3(0.0f));
-    }
-    if (ImGui::CollapsingHeader("camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const float size = scene_size(state.scene);
-        ImGui::SliderFloat("fly speed (m/s)", &state.fly.speed, 0.005f * size, 4.0f * size, "%.3f",
-                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-        if (ImGui::Button("reset camera (R)")) state.fly.camera = state.home_camera;
-        const Camera& camera = state.fly.camera;
-        ImGui::Text("at (%.2f, %.2f, %.2f), yaw %.0f, pitch %.0f", camera.position.x,
-                    camera.position.y, camera.position.z, glm::degrees(camera.yaw),
-                    glm::degrees(camera.pitch));
-        if (!state.renderer->history_valid()) ImGui::TextDisabled("history: none (fresh start)");
-    }
-    if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen))
-        timing_chart(*state.renderer);
-    if (ImGui::CollapsingHeader("keys")) {
-        ImGui::TextWrapped("%s", std::string(movement_help()).c_str());
-        for (const auto& binding : key_bindings())
-            ImGui::Text("%-8s %s", std::string(binding.key).c_str(),
-                        std::string(binding.description).c_str());
-    }
-    ImGui::PopItemWidth();
-    ImGui::End();
-}
-
 // Runs the script commands of `frame`; false when one failed (the message
 // is printed and the window closes with status 2).
-bool run_script_commands(WindowState& state, const std::vector<ScriptCommand>& script,
-                         std::size_t& next, int frame) {
+bool run_script_commands(WindowState& state, GLFWwindow* window,
+                         const std::vector<ScriptCommand>& script, std::size_t& next, int frame,
+                         std::vector<ScriptHold>& holds) {
     for (; next < script.size() && script[next].frame == frame; ++next) {
         const ScriptCommand& command = script[next];
         try {
@@ -444,12 +231,25 @@ bool run_script_commands(WindowState& state, const std::vector<ScriptCommand>& s
                 case ScriptCommand::Kind::set:
                     apply_set_command(command.name, command.values, state.settings, state.light);
                     state.light_angles_edit = light_angles(state.light.direction);
+                    set_active_section(state, section_of_setting(command.name));
                     break;
+                case ScriptCommand::Kind::hold:
+                    holds.push_back({command.name, int(command.numbers[0])});
+                    break;
+                case ScriptCommand::Kind::drag:
+                    mouse_look(state.fly.camera, float(command.numbers[0]),
+                               float(command.numbers[1]));
+                    break;
+                case ScriptCommand::Kind::resize:
+                    glfwSetWindowSize(window, int(command.numbers[0]), int(command.numbers[1]));
+                    break;
+                case ScriptCommand::Kind::capture:
+                    break;  // done before the frame was shown (run_interactive)
                 case ScriptCommand::Kind::key:
                     handle_action(state, find_key_binding(command.name)->action);
                     break;
                 case ScriptCommand::Kind::screenshot:
-                    write_screenshot(*state.renderer, command.values[0]);
+                    write_screenshot(*state.renderer, state.rendered_camera, command.values[0]);
                     fmt::print("deepgi: screenshot {}\n", command.values[0]);
                     break;
                 case ScriptCommand::Kind::drop:
@@ -468,7 +268,32 @@ bool run_script_commands(WindowState& state, const std::vector<ScriptCommand>& s
     return true;
 }
 
+// The window's back buffer as shown (image and panel), opaque.
+void capture_window(int width, int height, const fs::path& png) {
+    std::vector<std::uint8_t> rgba(std::size_t(width) * std::size_t(height) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    for (std::size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
+    write_png(png, width, height, rgba);  // rows bottom to top, as GL reads them
+}
+
 }  // namespace
+
+void install_scene(WindowState& state, Scene scene, const std::string& camera) {
+    const Camera home = select_camera(scene, camera);
+    auto renderer = std::make_unique<Renderer>(scene, state.settings, state.loader);
+    for (const std::string& line : describe_auto_lengths(
+             state.settings, renderer->settings_in_use(), scene_bounding_radius(scene)))
+        fmt::print("scene scale: {}\n", line);
+    state.renderer = std::move(renderer);
+    state.scene = std::move(scene);
+    state.light = state.scene.key_light;
+    state.light_angles_edit = light_angles(state.light.direction);
+    state.home_camera = home;
+    state.fly.camera = home;
+    state.fly.speed = 0.25f * scene_size(state.scene);
+}
 
 int run_interactive(const WindowOptions& options, const RenderSettings& initial_settings) {
     // Parsed before the window opens, so a bad script costs no window.
@@ -481,8 +306,9 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
 
     WindowState state(options);
     state.settings = initial_settings;
+    state.active_section = std::string(section_of_view(initial_settings.view));
     Scene first_scene = load_scene(options.scene, options.scene_limits);
-    if (!options.camera.empty()) find_file_camera(first_scene, options.camera);  // throws early
+    select_camera(first_scene, options.camera);  // a bad --camera throws before the window
 
     WindowContext context(initial_settings.width, initial_settings.height,
                           fmt::format("deepgi - {}", first_scene.name), true);
@@ -495,6 +321,10 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+    // An opaque panel: through the default 94% the image showed, and a bright
+    // spot behind it (cornell's ceiling lamp, beside the "scene" label at
+    // 640x360) read as a stray grey box.
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     glfwSetKeyCallback(window, on_key);        // both chain to ImGui's handlers
     glfwSetScrollCallback(window, on_scroll);  //
@@ -505,6 +335,7 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
     install_scene(state, std::move(first_scene), options.camera);
     double last_time = glfwGetTime();
     std::size_t next_command = 0;
+    std::vector<ScriptHold> holds;
     for (int frame = 0; !glfwWindowShouldClose(window) && !state.quit; ++frame) {
         glfwPollEvents();
         const double now = glfwGetTime();
@@ -524,7 +355,9 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
         }
         for (const std::string& path : inbox.dropped) load_dropped(state, path);
         inbox.dropped.clear();
-        update_fly_camera(window, state.fly, seconds);
+        update_fly_camera(window, state.fly, held_move_keys(window, holds), seconds);
+        for (ScriptHold& hold : holds) --hold.frames_left;
+        std::erase_if(holds, [](const ScriptHold& hold) { return hold.frames_left <= 0; });
 
         RenderSettings wanted = state.settings;
         if (state.show_panel) draw_panel(state, wanted);
@@ -551,6 +384,7 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
                 state.light = state.renderer->key_light();
             }
             state.renderer->render(state.fly.camera);
+            state.rendered_camera = state.fly.camera;
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();
@@ -563,8 +397,22 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        // A script's captures read the back buffer before it is shown.
+        for (std::size_t i = next_command; i < script.size() && script[i].frame == frame; ++i) {
+            if (script[i].kind != ScriptCommand::Kind::capture || width <= 0 || height <= 0)
+                continue;
+            try {
+                capture_window(width, height, script[i].values[0]);
+                fmt::print("deepgi: capture {}\n", script[i].values[0]);
+            } catch (const std::exception& error) {
+                fmt::print(stderr, "deepgi: error: {}:{}: {}\n", options.script.string(),
+                           script[i].line, error.what());
+                status = 2;
+                state.quit = true;
+            }
+        }
         glfwSwapBuffers(window);
-        if (scripted && !run_script_commands(state, script, next_command, frame)) {
+        if (scripted && !run_script_commands(state, window, script, next_command, frame, holds)) {
             status = 2;
             break;
         }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -91,6 +92,17 @@ bool is_known_setting(std::string_view name) {
            name == "ao-method" || name == "radiosity-method" || is_light_setting(name);
 }
 
+// A whole number in [low, high] for a script argument; `fail` throws.
+template <class Fail>
+int whole_number(const std::string& text, int low, int high, std::string_view what, Fail fail) {
+    int value = 0;
+    const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (result.ec != std::errc() || result.ptr != text.data() + text.size() || value < low ||
+        value > high)
+        fail(fmt::format("{} '{}' is not a whole number from {} to {}", what, text, low, high));
+    return value;
+}
+
 }  // namespace
 
 std::span<const KeyBinding> key_bindings() {
@@ -173,6 +185,35 @@ bool apply_key_action(KeyAction action, RenderSettings& settings, KeyState& stat
 float fly_step(float frame_seconds, float metres_per_second) {
     if (!(frame_seconds > 0.0f)) return 0.0f;  // also NaN: a clock glitch moves nothing
     return metres_per_second * std::min(frame_seconds, max_fly_step_seconds);
+}
+
+void mouse_look(Camera& camera, float dx, float dy) {
+    camera.yaw += dx * look_radians_per_pixel;
+    camera.pitch =
+        std::clamp(camera.pitch - dy * look_radians_per_pixel, -max_look_pitch, max_look_pitch);
+}
+
+bool* move_key_flag(MoveKeys& keys, std::string_view key) {
+    if (key == "W") return &keys.forward;
+    if (key == "S") return &keys.back;
+    if (key == "A") return &keys.left;
+    if (key == "D") return &keys.right;
+    if (key == "Q") return &keys.down;
+    if (key == "E") return &keys.up;
+    return nullptr;
+}
+
+void fly_move(Camera& camera, const MoveKeys& keys, float step) {
+    const glm::vec3 forward = camera_forward(camera);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    glm::vec3 move(0.0f);
+    if (keys.forward) move += forward;
+    if (keys.back) move -= forward;
+    if (keys.right) move += right;
+    if (keys.left) move -= right;
+    if (keys.up) move.y += 1.0f;
+    if (keys.down) move.y -= 1.0f;
+    if (glm::length(move) > 0.0f) camera.position += glm::normalize(move) * step;
 }
 
 LightAngles light_angles(glm::vec3 direction) {
@@ -306,6 +347,40 @@ std::vector<ScriptCommand> parse_script(std::string_view text, std::string_view 
                     keys += std::string(keys.empty() ? "" : ", ") + std::string(binding.key);
                 fail(fmt::format("unknown key '{}' (keys: {})", command.name, keys));
             }
+        } else if (verb == "hold") {
+            command.kind = ScriptCommand::Kind::hold;
+            if (arguments.size() != 2) fail("hold takes a key and a number of frames");
+            command.name = arguments[0];
+            MoveKeys keys;
+            if (!move_key_flag(keys, command.name))
+                fail(fmt::format("hold: '{}' is not a movement key (W, A, S, D, Q, E)",
+                                 command.name));
+            command.numbers[0] = whole_number(arguments[1], 1, 100000, "hold: frames", fail);
+        } else if (verb == "drag") {
+            command.kind = ScriptCommand::Kind::drag;
+            if (arguments.size() != 2) fail("drag takes DX DY in pixels");
+            for (int i = 0; i < 2; ++i) {
+                try {
+                    command.numbers[i] = parse_float("drag", arguments[std::size_t(i)]);
+                } catch (const InputError& error) {
+                    fail(error.what());
+                }
+            }
+        } else if (verb == "resize") {
+            command.kind = ScriptCommand::Kind::resize;
+            if (arguments.size() != 2) fail("resize takes WIDTH HEIGHT in pixels");
+            command.numbers[0] =
+                whole_number(arguments[0], 1, limits::max_image_side, "resize: width", fail);
+            command.numbers[1] =
+                whole_number(arguments[1], 1, limits::max_image_side, "resize: height", fail);
+        } else if (verb == "capture") {
+            command.kind = ScriptCommand::Kind::capture;
+            if (arguments.size() != 1) fail("capture takes one path");
+            std::string extension = std::filesystem::path(arguments[0]).extension().string();
+            std::transform(extension.begin(), extension.end(), extension.begin(),
+                           [](unsigned char c) { return char(std::tolower(c)); });
+            if (extension != ".png") fail("capture: the path must end in .png");
+            command.values = arguments;
         } else if (verb == "screenshot" || verb == "drop") {
             command.kind =
                 verb == "drop" ? ScriptCommand::Kind::drop : ScriptCommand::Kind::screenshot;
@@ -315,7 +390,10 @@ std::vector<ScriptCommand> parse_script(std::string_view text, std::string_view 
             command.kind = ScriptCommand::Kind::quit;
             if (!arguments.empty()) fail("quit takes no arguments");
         } else {
-            fail(fmt::format("unknown command '{}' (set, key, screenshot, drop, quit)", verb));
+            fail(
+                fmt::format("unknown command '{}' (set, key, hold, drag, resize, capture, "
+                            "screenshot, drop, quit)",
+                            verb));
         }
         commands.push_back(std::move(command));
     }

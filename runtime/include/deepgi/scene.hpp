@@ -179,6 +179,17 @@ Scene load_scene(std::string_view name_or_path, const SceneLimits& limits = {});
 // camera list); throws InputError naming the cameras there are.
 Camera find_file_camera(const Scene& scene, std::string_view name_or_index);
 
+// --camera pose:X,Y,Z,YAW,PITCH,FOVY,NEAR: an explicit camera, position in
+// scene units, yaw, pitch and vertical field of view in degrees, near plane in
+// scene units. Throws InputError "--camera '...': <problem>".
+Camera parse_camera_pose(std::string_view text);
+// The pose in that form, written so that parse_camera_pose gives back the same
+// floats bit for bit (a window's view reproduced headless; camera.txt).
+std::string format_camera_pose(const Camera& camera);
+// What --camera names: empty, the scene's default camera; "pose:...", that
+// pose; otherwise a file camera (find_file_camera).
+Camera select_camera(const Scene& scene, std::string_view camera);
+
 glm::vec3 camera_forward(const Camera& camera);
 glm::mat4 camera_view_matrix(const Camera& camera);
 Camera camera_on_path(const CameraPath& path, int frame);

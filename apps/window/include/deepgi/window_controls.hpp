@@ -66,6 +66,23 @@ bool apply_key_action(KeyAction action, RenderSettings& settings, KeyState& stat
 inline constexpr float max_fly_step_seconds = 0.05f;
 float fly_step(float frame_seconds, float metres_per_second);
 
+// Mouse look: a right-button drag of (dx, dy) pixels turns the camera by
+// look_radians_per_pixel each, pitch kept within +-max_look_pitch. The
+// window's mouse and a script's `drag` both go through it.
+inline constexpr float look_radians_per_pixel = 0.004f;
+inline constexpr float max_look_pitch = 1.5f;
+void mouse_look(Camera& camera, float dx, float dy);
+
+// The movement keys held this frame (W/A/S/D, Q/E).
+struct MoveKeys {
+    bool forward = false, back = false, left = false, right = false, down = false, up = false;
+};
+// "W" "A" "S" "D" "Q" "E": the key's flag in `keys`; nullptr for another key.
+bool* move_key_flag(MoveKeys& keys, std::string_view key);
+// Moves the camera `step` along the held keys' direction (forward is where it
+// looks, up is +Y); no key, no move.
+void fly_move(Camera& camera, const MoveKeys& keys, float step);
+
 // ---- --script FILE ----
 // One command a line; '#' starts a comment; blank lines are ignored:
 //   frame N set NAME VALUE...   a numeric setting (numeric_settings() names),
@@ -74,18 +91,23 @@ float fly_step(float frame_seconds, float metres_per_second);
 //                               light-yaw DEG, light-pitch DEG,
 //                               light-position X Y Z (spot lights)
 //   frame N key KEY             a key press from key_bindings()
-//   frame N screenshot DIR      the PNG and every pass output's PFM into DIR
+//   frame N hold KEY FRAMES     a movement key (W A S D Q E) held for the next FRAMES frames
+//   frame N drag DX DY          a right-button mouse drag of DX, DY pixels (look)
+//   frame N resize W H          the window resized to W x H pixels
+//   frame N capture FILE.png    the window as shown, panel included
+//   frame N screenshot DIR      the PNG, every pass output's PFM and camera.txt into DIR
 //   frame N drop FILE           as if FILE were dropped onto the window
 //   frame N quit                close the window (exit status 0)
 // Commands of frame N run after frame N (counted from 0) was rendered, in
 // file order; frame numbers never decrease. The script steps frames at a
 // fixed 1/30 s so a run repeats exactly.
 struct ScriptCommand {
-    enum class Kind { set, key, screenshot, drop, quit };
+    enum class Kind { set, key, hold, drag, resize, capture, screenshot, drop, quit };
     int frame = 0;
     Kind kind = Kind::quit;
-    std::string name;                 // set: the setting; key: the key
-    std::vector<std::string> values;  // set: its value(s); screenshot, drop: the path
+    std::string name;                 // set: the setting; key, hold: the key
+    std::vector<std::string> values;  // set: its value(s); screenshot, drop, capture: the path
+    double numbers[2] = {0.0, 0.0};   // hold: frames; drag: dx, dy; resize: width, height
     int line = 0;
 };
 
