@@ -12,7 +12,9 @@
 //   - radiance: this frame's `reflection-radiance` and, when dumped, the
 //     filtered `reflection-temporal`, against the traced L(y): relative mean
 //     absolute error sum|L - L_ref| / sum L_ref and bias sum(L - L_ref) /
-//     sum L_ref, over the three channels.
+//     sum L_ref, over the three channels; and the filtered radiance's over
+//     the pixels whose surface agrees, which leaves out the march's misses
+//     and keeps the shading's own error (the hit texel's lit radiance).
 // Prints one line of key=value pairs.
 #include "deepgi/image_io.hpp"
 
@@ -51,7 +53,7 @@ int main(int argc, char** argv) {
         }
         long long mirrors = 0, same = 0, both_miss = 0, missed = 0, wrong = 0, extra = 0;
         double truth_sum = 0.0, error_sum = 0.0, bias_sum = 0.0, filtered_error = 0.0,
-               filtered_bias = 0.0;
+               filtered_bias = 0.0, same_truth = 0.0, same_error = 0.0, same_bias = 0.0;
         for (int y = guard; y < truth.height - guard; ++y)
             for (int x = guard; x < truth.width - guard; ++x) {
                 const float a = raster.at(x, y), b = traced.at(x, y);
@@ -83,16 +85,23 @@ int main(int argc, char** argv) {
                     bias_sum += radiance.at(x, y, c) - t;
                     filtered_error += std::abs(filtered.at(x, y, c) - t);
                     filtered_bias += filtered.at(x, y, c) - t;
+                    if (surface == expected) {
+                        same_truth += t;
+                        same_error += std::abs(filtered.at(x, y, c) - t);
+                        same_bias += filtered.at(x, y, c) - t;
+                    }
                 }
             }
         const double n = std::max(mirrors, 1LL), sum = std::max(truth_sum, 1e-30);
         fmt::print(
             "mirror_pixels={} same_surface={:.4f} both_miss={:.4f} renderer_missed={:.4f} "
             "wrong_surface={:.4f} renderer_only={:.4f} mean_truth={:.4g} rel_mae={:.4f} "
-            "rel_bias={:+.4f} filtered_rel_mae={:.4f} filtered_rel_bias={:+.4f}\n",
+            "rel_bias={:+.4f} filtered_rel_mae={:.4f} filtered_rel_bias={:+.4f} "
+            "same_surface_filtered_rel_mae={:.4f} same_surface_filtered_rel_bias={:+.4f}\n",
             mirrors, same / n, both_miss / n, missed / n, wrong / n, extra / n,
             truth_sum / (3.0 * n), error_sum / sum, bias_sum / sum, filtered_error / sum,
-            filtered_bias / sum);
+            filtered_bias / sum, same_error / std::max(same_truth, 1e-30),
+            same_bias / std::max(same_truth, 1e-30));
         return 0;
     } catch (const std::exception& error) {
         fmt::print(stderr, "deepgi_compare_reflections: {}\n", error.what());
