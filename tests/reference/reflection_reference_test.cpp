@@ -48,6 +48,7 @@ deepgi::ReferenceSettings mirror_settings(int threads) {
     settings.irradiance = false;
     settings.irradiance_rays.min_rays = settings.irradiance_rays.max_rays = 256;
     settings.radiosity_radius = 3.0f;
+    settings.reflections = true;
     settings.threads = threads;
     return settings;
 }

@@ -239,7 +239,9 @@ struct ReferenceSettings {
     // Trace the mirror reflection of every mirror pixel of layer 0 (under
     // render.mirror_roughness); a scene without mirrors traces nothing and
     // leaves the reflection images empty. Hit irradiance uses irradiance_rays.
-    bool reflections = true;
+    // Off by default, so callers that measure AO or E alone pay nothing for
+    // mirrors; `deepgi reference` turns it on.
+    bool reflections = false;
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     // Called with (pixels done, pixels total) from the calling thread.
