@@ -46,6 +46,8 @@ struct ReferenceOptions {
     std::string min_separation = "auto";
     bool no_ao = false;
     bool no_irradiance = false;
+    bool no_reflections = false;
+    float mirror_roughness = deepgi::RenderSettings{}.mirror_roughness;
     std::string radiosity_radius = "auto";
     int irradiance_rays = 16384;
     int irradiance_min_rays = 1024;
@@ -76,6 +78,8 @@ int run(const ReferenceOptions& options) {
             fmt::format("--threads {} must lie in [0, 1024] (0: all)", options.threads));
     // The renderer's settings the reference shares, checked by their rows.
     deepgi::check_setting(row("guard-band"), options.guard_band);
+    deepgi::check_setting(row("mirror-roughness"), options.mirror_roughness);
+    settings.render.mirror_roughness = options.mirror_roughness;
     row("ao-radius")
         .set(settings.render, deepgi::parse_setting_value(row("ao-radius"), options.radius));
     row("min-separation")
@@ -106,6 +110,7 @@ int run(const ReferenceOptions& options) {
     settings.rays.target_error = options.target_error;
     settings.ambient_visibility = !options.no_ao;
     settings.irradiance = !options.no_irradiance;
+    settings.reflections = !options.no_reflections;
     settings.irradiance_rays.max_rays = options.irradiance_rays;
     settings.irradiance_rays.min_rays =
         std::min(options.irradiance_min_rays, options.irradiance_rays);
@@ -116,8 +121,8 @@ int run(const ReferenceOptions& options) {
     // A progress bar only where someone watches; logs stay clean.
     // The library reports the ambient visibility, then the irradiance (each
     // when traced), each ending with done == total.
+    auto phases = std::make_shared<std::vector<std::string>>();
     if (isatty(fileno(stderr))) {
-        auto phases = std::make_shared<std::vector<std::string>>();
         if (!options.no_ao) phases->push_back("ambient visibility");
         if (!options.no_irradiance) phases->push_back("irradiance");
         auto phase = std::make_shared<std::size_t>(0);
@@ -136,6 +141,11 @@ int run(const ReferenceOptions& options) {
     }
 
     const deepgi::Scene scene = deepgi::load_scene(options.scene);
+    const deepgi::RayScene rays(scene);
+    if (settings.progress && settings.reflections &&
+        rays.has_mirrors(settings.render.mirror_roughness)) {
+        phases->push_back("reflections");
+    }
     const deepgi::RenderSettings given = settings.render;
     settings.render =
         deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
@@ -144,7 +154,6 @@ int run(const ReferenceOptions& options) {
              given, settings.render, deepgi::scene_bounding_radius(scene)))
         fmt::print("scene scale: {}\n", line);
     const auto start = std::chrono::steady_clock::now();
-    const deepgi::RayScene rays(scene);
     const deepgi::ReferenceImages images =
         deepgi::render_reference(rays, scene.default_camera, settings);
     const double seconds =
@@ -179,6 +188,16 @@ int run(const ReferenceOptions& options) {
              {"reference-irradiance-rays", &images.irradiance_rays, PreviewMapping::normalised},
              {"reference-direct-radiance", &images.direct_radiance, PreviewMapping::radiance}});
     }
+    // Only for a scene with mirrors: a scene without writes the same set as
+    // before reflections were traced.
+    if (!images.reflection_radiance.pixels.empty()) {
+        outputs.insert(
+            outputs.end(),
+            {{"reference-reflection-radiance", &images.reflection_radiance,
+              PreviewMapping::radiance},
+             {"reference-reflection-hit", &images.reflection_hit, PreviewMapping::identifier},
+             {"reference-surface-layers", &images.surface_layers, PreviewMapping::identifier}});
+    }
     spiral::fileio::AtomicDirectory set(output, ".pfm .png");
     for (const Output& entry : outputs) {
         const auto pfm = deepgi::encode_pfm(*entry.image);
@@ -203,6 +222,16 @@ int run(const ReferenceOptions& options) {
             "reference: {} pixels on surfaces, {:.0f} rays per pixel on average, standard error "
             "max {:.4f} ({} pixels at or above 0.005), {:.1f} s\n",
             surface, surface ? ray_total / double(surface) : 0.0, max_error, above, seconds);
+    }
+    if (!images.reflection_radiance.pixels.empty()) {
+        long long mirrors = 0, hits = 0;
+        for (std::size_t i = 0; i < images.surface_layers.pixels.size() / 3; ++i) {
+            if (images.surface_layers.pixels[3 * i + 2] != 1.0f) continue;
+            ++mirrors;
+            if (images.reflection_hit.pixels[3 * i] >= 0.0f) ++hits;
+        }
+        fmt::print("reference reflections: {} mirror pixels, {} reflected rays hit a surface\n",
+                   mirrors, hits);
     }
     if (settings.irradiance) {
         // Errors relative to each pixel's E, over pixels that receive light;
@@ -285,6 +314,10 @@ int run_reference_command(int argc, char** argv) {
         ->default_str(with_unit(defaults.min_separation, "min-separation"));
     app.add_flag("--no-ao", options.no_ao, "Do not trace ambient visibility");
     app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
+    app.add_flag("--no-reflections", options.no_reflections,
+                 "Do not trace the mirror reflections (scenes with mirrors only)");
+    app.add_option("--mirror-roughness", options.mirror_roughness, row_help("mirror-roughness"))
+        ->default_str(fmt::format("{}", defaults.mirror_roughness));
     app.add_option("--radiosity-radius", options.radiosity_radius, row_help("radiosity-radius"))
         ->default_str(with_unit(defaults.radiosity.radius, "radiosity-radius"));
     app.add_option("--irradiance-rays", options.irradiance_rays,

@@ -20,6 +20,16 @@ std::uint8_t srgb_byte(float linear) {
     return std::uint8_t(std::lround(encoded * 255.0f));
 }
 
+// A bright colour per id, so neighbouring surfaces tell apart.
+float identifier_colour(float id, int channel) {
+    if (!(id >= 0.0f)) return id == -1.0f && channel == 2 ? 0.25f : 0.0f;
+    std::uint32_t h = std::uint32_t(id) * 0x9e3779b1u;
+    h ^= h >> 15;
+    h *= 0x85ebca77u;
+    h ^= h >> 13;
+    return 0.2f + 0.8f * float((h >> (8 * channel)) & 0xffu) / 255.0f;
+}
+
 }  // namespace
 
 float filmic_tonemap(float radiance) {
@@ -55,6 +65,9 @@ std::vector<std::uint8_t> preview_rgba8(const deepgi::FloatImage& image, Preview
                     break;
                 case PreviewMapping::normalised:
                     shown = largest > 0.0f ? value / largest : 0.0f;
+                    break;
+                case PreviewMapping::identifier:
+                    shown = identifier_colour(image.pixels[i * std::size_t(image.channels)], c);
                     break;
             }
             rgba[i * 4 + std::size_t(c)] = srgb_byte(shown);

@@ -15,6 +15,8 @@ enum class PreviewMapping {
     radiance,    // radiance through the filmic tonemap at exposure 1
     irradiance,  // E shown as the radiance of a white Lambertian surface, E / pi
     normalised,  // a count or an error: divided by the image's largest value
+    identifier,  // the first channel as an id: a colour hashed from it; -1 dark blue, else < 0
+                 // black
 };
 
 // RGBA8, rows bottom to top like the image (encode_png flips them); 1-channel

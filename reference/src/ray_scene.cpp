@@ -8,8 +8,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace deepgi {
 
@@ -27,6 +29,8 @@ struct RayScene::State {
     std::vector<RayScene::Emitter> emitters;
     std::vector<double> emitter_cdf;  // running sum of the probabilities
     std::vector<int> emitter_of;      // per triangle: index into emitters, or -1
+    std::vector<int> surface_of;      // per triangle: surface_id()
+    glm::vec3 ambient{0.0f}, background{0.0f};
     ~State() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -80,6 +84,8 @@ RayScene::RayScene(const Scene& scene) : state_(std::make_unique<State>()) {
     s.materials = scene.materials;
     s.textures = scene.textures;
     s.key_light = scene.key_light;
+    s.ambient = scene.ambient;
+    s.background = scene.background;
     s.triangle_material.assign(triangles, -1);
     for (const DrawBatch& batch : scene.batches) {
         if (batch.material < 0 || std::size_t(batch.material) >= scene.materials.size()) continue;
@@ -87,6 +93,22 @@ RayScene::RayScene(const Scene& scene) : state_(std::make_unique<State>()) {
         const std::size_t last = std::min<std::size_t>(
             triangles, (std::size_t(batch.first_index) + batch.index_count) / 3);
         for (std::size_t t = first; t < last; ++t) s.triangle_material[t] = batch.material;
+    }
+    // Planar surfaces: triangles of one material in one plane, keyed by the
+    // rounded plane; the surface is named by its first triangle.
+    {
+        std::map<std::array<long long, 5>, int> first_of;
+        s.surface_of.assign(triangles, 0);
+        const double offset_unit = 1e-4 * double(scale_);
+        for (std::size_t t = 0; t < triangles; ++t) {
+            const glm::dvec3 n(s.face_normals[t]);
+            const double offset =
+                glm::dot(n, glm::dvec3(scene.vertices[scene.indices[3 * t]].position));
+            const std::array<long long, 5> key = {s.triangle_material[t], std::llround(n.x * 1e4),
+                                                  std::llround(n.y * 1e4), std::llround(n.z * 1e4),
+                                                  std::llround(offset / offset_unit)};
+            s.surface_of[t] = first_of.emplace(key, int(t)).first->second;
+        }
     }
     // Emitters, in triangle order, with their power-times-area weights.
     s.emitter_of.assign(triangles, -1);
@@ -212,6 +234,34 @@ RayScene::Surface RayScene::surface(const Hit& hit) const {
 
 const KeyLight& RayScene::key_light() const {
     return state_->key_light;
+}
+
+bool RayScene::mirror(unsigned primitive, float mirror_roughness) const {
+    const State& s = *state_;
+    if (primitive >= s.triangle_material.size()) return false;
+    const int m = s.triangle_material[primitive];
+    if (m < 0) return false;
+    const Material& material = s.materials[std::size_t(m)];
+    return material.roughness <= mirror_roughness && material.metallic >= 0.5f;
+}
+
+bool RayScene::has_mirrors(float mirror_roughness) const {
+    for (std::size_t t = 0; t < state_->triangle_material.size(); ++t)
+        if (mirror(unsigned(t), mirror_roughness)) return true;
+    return false;
+}
+
+int RayScene::surface_id(unsigned primitive) const {
+    return primitive < state_->surface_of.size() ? state_->surface_of[primitive] : -1;
+}
+
+glm::dvec3 RayScene::environment_radiance(glm::vec3 direction) const {
+    // environment_irradiance() of environment.glsl over pi.
+    const glm::dvec3 ambient(state_->ambient), background(state_->background);
+    if (background.x + background.y + background.z <= 0.0) return ambient;
+    const double up = 0.5 + 0.5 * double(glm::normalize(direction).y);
+    const glm::dvec3 sky = ambient + 0.25 * background, ground = ambient * 0.5;
+    return ground + (sky - ground) * up;
 }
 
 const std::vector<RayScene::Emitter>& RayScene::emitters() const {

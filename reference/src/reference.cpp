@@ -104,6 +104,12 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
         out.irradiance_rays = image(1, 0.0f);
         out.direct_radiance = image(3, 0.0f);
     }
+    const bool reflections = settings.reflections && scene.has_mirrors(render.mirror_roughness);
+    if (reflections) {
+        out.reflection_radiance = image(3, 0.0f);
+        out.reflection_hit = image(3, -2.0f);
+        out.surface_layers = image(3, -1.0f);
+    }
     std::vector<glm::vec3> positions(pixels), normals(pixels);
     std::vector<RayScene::Hit> first_hits(pixels);
 
@@ -163,6 +169,14 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                 const RayScene::Hit second = scene.intersect_front(
                     eye, direction, first.distance + render.min_separation, 1e30f);
                 if (second.hit) out.depth_layer1.pixels[i] = second.distance;
+                if (reflections) {
+                    out.surface_layers.pixels[3 * i + 0] = float(scene.surface_id(first.primitive));
+                    if (second.hit)
+                        out.surface_layers.pixels[3 * i + 1] =
+                            float(scene.surface_id(second.primitive));
+                    out.surface_layers.pixels[3 * i + 2] =
+                        scene.mirror(first.primitive, render.mirror_roughness) ? 1.0f : 0.0f;
+                }
             }
         },
         false);
@@ -211,6 +225,30 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                         glm::dvec3(scene.surface(first_hits[i]).emissive);
                     for (int c = 0; c < 3; ++c)
                         out.direct_radiance.pixels[3 * i + c] = float(direct[c]);
+                }
+            },
+            true);
+
+    // Reflection streams are offset by twice the pixel count, past the
+    // ambient visibility's and the irradiance's.
+    if (reflections)
+        parallel_rows(
+            [&](int y) {
+                for (int x = 0; x < w; ++x) {
+                    const std::size_t i = std::size_t(y) * w + x;
+                    if (out.surface_layers.pixels[3 * i + 2] != 1.0f) continue;
+                    const ReflectionSample s = mirror_reflection_at(
+                        scene, eye, positions[i], normals[i],
+                        scene.surface(first_hits[i]).shading_normal, settings.radiosity_radius,
+                        render.environment, settings.irradiance_rays,
+                        stream_seed(settings.seed, 2 * pixels + i));
+                    for (int c = 0; c < 3; ++c)
+                        out.reflection_radiance.pixels[3 * i + c] = float(s.radiance[c]);
+                    out.reflection_hit.pixels[3 * i + 0] =
+                        s.hit.hit ? float(scene.surface_id(s.hit.primitive)) : -1.0f;
+                    out.reflection_hit.pixels[3 * i + 1] =
+                        s.hit.hit ? float(s.hit.primitive) : -1.0f;
+                    out.reflection_hit.pixels[3 * i + 2] = s.hit.hit ? s.hit.distance : 0.0f;
                 }
             },
             true);

@@ -54,6 +54,22 @@ public:
     Surface surface(const Hit& hit) const;
     // The scene's key light (copied at construction).
     const KeyLight& key_light() const;
+    // Whether triangle `primitive`'s material is a mirror under this
+    // threshold: roughness at most `mirror_roughness`, metallic at least 0.5
+    // (as the G-buffer pass decides; docs/reflections.md).
+    bool mirror(unsigned primitive, float mirror_roughness) const;
+    // Whether any triangle is a mirror under this threshold.
+    bool has_mirrors(float mirror_roughness) const;
+    // The planar surface triangle `primitive` belongs to: the lowest index of
+    // the triangles of its material that lie in its plane (unit normal and
+    // offset equal after rounding to 1e-4, the offset in units of the scene's
+    // extent). A box face or a quad is one surface; a curved mesh has one
+    // per triangle. -1 for an out-of-range primitive.
+    int surface_id(unsigned primitive) const;
+    // The radiance of the environment seen along a world-space direction, as
+    // environment.glsl gives it to the reflections: the irradiance onto a
+    // surface facing that way over pi (scene ambient and background).
+    glm::dvec3 environment_radiance(glm::vec3 direction) const;
 
     // A triangle that emits (some channel of its emissive above 0, area above
     // 0), for sampling emitters directly. Its emission is uniform: surface()
@@ -193,6 +209,26 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
                                float radius, const IrradianceRayBudget& budget, std::uint64_t seed);
 
+// The mirror reflection at a layer-0 point X of a mirror (docs/reflections.md,
+// "Against the ray tracer"): the ray leaves X along r = reflect(d, n_s), d
+// the unit camera ray to X and n_s the shading normal (what the G-buffer
+// stores), and its first surface y, either side, is shaded as the renderer
+// shades a hit: L(y) = direct light (exact shadow ray) + emissive + albedo /
+// pi * E(y), E the one-bounce irradiance of irradiance_at() at y over the
+// radiosity radius. A back face gives 0 (inside a solid); a miss gives the
+// environment's radiance along r.
+struct ReflectionSample {
+    RayScene::Hit hit;          // the reflected ray's first surface (hit = false: none)
+    glm::vec3 direction{0.0f};  // r, unit
+    glm::dvec3 radiance{0.0};   // RGB reflected radiance (before the mirror's reflectance)
+    int rays = 0;               // irradiance rays at y
+};
+
+ReflectionSample mirror_reflection_at(const RayScene& scene, glm::vec3 eye, glm::vec3 position,
+                                      glm::vec3 geometric_normal, glm::vec3 shading_normal,
+                                      float radiosity_radius, bool environment,
+                                      const IrradianceRayBudget& budget, std::uint64_t seed);
+
 struct ReferenceSettings {
     RenderSettings render;  // size, guard band, min_separation (dz), ao.radius
     AoRayBudget rays;
@@ -200,6 +236,12 @@ struct ReferenceSettings {
     bool irradiance = false;         // trace one-bounce irradiance
     float radiosity_radius = 1.0f;   // m, as deepgi --radiosity-radius
     IrradianceRayBudget irradiance_rays;
+    // Trace the mirror reflection of every mirror pixel of layer 0 (under
+    // render.mirror_roughness); a scene without mirrors traces nothing and
+    // leaves the reflection images empty. Hit irradiance uses irradiance_rays.
+    // Off by default, so callers that measure AO or E alone pay nothing for
+    // mirrors; `deepgi reference` turns it on.
+    bool reflections = false;
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     // Called with (pixels done, pixels total) from the calling thread.
@@ -223,6 +265,17 @@ struct ReferenceImages {
     // RGB direct light reflected at layer 0 (emissive excluded): what the
     // direct light pass writes, with an exact shadow ray for the shadow map.
     FloatImage direct_radiance;
+    // Only when ReferenceSettings::reflections and the scene has a mirror
+    // (empty otherwise):
+    FloatImage reflection_radiance;  // RGB reflected radiance L(y) at mirror pixels, 0 elsewhere
+    // Per pixel: the surface_id() of the reflected ray's hit (-1: none, the
+    // environment; -2: not a mirror or no surface), its triangle (same
+    // codes), and the hit distance from X (0 on a miss).
+    FloatImage reflection_hit;
+    // Per pixel: the surface_id() stored in layer 0 and in layer 1 (-1:
+    // none), and 1 where layer 0 is a mirror, else 0; to map the renderer's
+    // hit texel and layer to a surface.
+    FloatImage surface_layers;
 };
 
 // The camera ray through the centre of internal pixel (x, y), exactly as the
