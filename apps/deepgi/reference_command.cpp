@@ -53,7 +53,12 @@ struct ReferenceOptions {
     int irradiance_min_rays = 1024;
     int irradiance_ceiling_rays = 65536;
     double irradiance_target_error = 0.01;
+    int bounces = 1;
 };
+
+// Diffuse bounces the irradiance may trace: each is one more ray per
+// sample, and a few already show how far the renderer's rho_prop reaches.
+constexpr int max_bounces = 4;
 
 // The row of a renderer setting the reference shares (settings.hpp).
 const deepgi::NumericSetting& row(std::string_view name) {
@@ -95,6 +100,9 @@ int run(const ReferenceOptions& options) {
         throw deepgi::InputError("--irradiance-ceiling-rays must be at least 1");
     if (!(options.irradiance_target_error >= 0.0))
         throw deepgi::InputError("--irradiance-target-error must be >= 0");
+    if (options.bounces < 1 || options.bounces > max_bounces)
+        throw deepgi::InputError(
+            fmt::format("--bounces {} must lie in [1, {}]", options.bounces, max_bounces));
     if (options.no_ao && options.no_irradiance)
         throw deepgi::InputError("--no-ao and --no-irradiance leave nothing to trace");
     const fs::path output = options.output;
@@ -116,6 +124,7 @@ int run(const ReferenceOptions& options) {
         std::min(options.irradiance_min_rays, options.irradiance_rays);
     settings.irradiance_rays.ceiling_max_rays = options.irradiance_ceiling_rays;
     settings.irradiance_rays.target_relative_error = options.irradiance_target_error;
+    settings.bounces = options.bounces;
     settings.seed = options.seed;
     settings.threads = options.threads;
     // A progress bar only where someone watches; logs stay clean.
@@ -334,6 +343,11 @@ int run_reference_command(int argc, char** argv) {
                    "Stop adding irradiance rays once every channel's standard error (times "
                    "1.3) is below this fraction of E, or 0.002, and below 0.005")
         ->default_str(fmt::format("{} of E", options.irradiance_target_error));
+    app.add_option("--bounces", options.bounces,
+                   fmt::format("Diffuse bounces K of the irradiance, 1 to {} (E_K: what deep "
+                               "radiosity holds after K still frames of --rho-prop 1)",
+                               max_bounces))
+        ->default_str("1 bounce");
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi reference"))
         return *status;
     return run_reporting_errors("deepgi reference", [&] { return run(options); });

@@ -1,6 +1,7 @@
-// One-bounce irradiance at one point (docs/reference.md): the key light
-// reflected and the emissive surfaces seen, combined by multiple importance
-// sampling, until the standard error is below the budget's targets.
+// Irradiance at one point (docs/reference.md): the key light reflected and
+// the emissive surfaces seen, combined by multiple importance sampling, plus
+// K - 1 further diffuse bounces by cosine-weighted paths, until the standard
+// error is below the budget's targets.
 #include "deepgi/reference.hpp"
 #include "sampling.hpp"
 
@@ -83,8 +84,8 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
 }
 
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
-                               float radius, const IrradianceRayBudget& budget,
-                               std::uint64_t seed) {
+                               float radius, const IrradianceRayBudget& budget, std::uint64_t seed,
+                               int bounces) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
@@ -95,9 +96,40 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     const bool sample_emitters = !emitters.empty();
     long long rays = 0;
 
+    // The light y passes on from bounces 2..K: one cosine-weighted path
+    // from y, `more` bounces long, each step within the radius and onto a
+    // front face, as the gather at y would see it. Returns an estimate of
+    // E_more(y) / pi (E_0 = 0), so y's radiance gains albedo(y) times it.
+    auto passed_on = [&](glm::vec3 y, glm::vec3 y_normal, int more, Random& random) {
+        glm::dvec3 result(0.0), throughput(1.0);
+        for (; more > 0; --more) {
+            const glm::dvec3 ny(y_normal);
+            glm::dvec3 ty, by;
+            tangent_frame(ny, ty, by);
+            constexpr double scale = 1.0 / 18446744073709551616.0;
+            const double v1 = double(random.next()) * scale, v2 = double(random.next()) * scale;
+            const double s = std::sqrt(v1), phi = 2.0 * pi * v2;
+            const double z = std::sqrt(std::max(0.0, 1.0 - v1));
+            const glm::vec3 w(ty * (s * std::cos(phi)) + by * (s * std::sin(phi)) + ny * z);
+            const glm::vec3 from = y + y_normal * surface_offset(y, radius);
+            ++rays;
+            const RayScene::Hit hit = scene.intersect(from, w, 0.0f, radius);
+            if (!hit.hit || !(glm::dot(hit.normal, w) < 0.0f)) break;
+            const glm::vec3 next = from + w * hit.distance;
+            const RayScene::Surface surface = scene.surface(hit);
+            // Cosine sampling alone (pdf cos / pi): L(next) estimates E / pi.
+            result += throughput * direct_outgoing_radiance(scene, hit, next);
+            throughput *= glm::dvec3(surface.albedo);
+            if (throughput == glm::dvec3(0.0)) break;
+            y = next;
+            y_normal = hit.normal;
+        }
+        return result;
+    };
+
     // One sample's estimate of E / pi from a point of the direction square
     // and, when the scene has emitters, a point of the emitter square.
-    auto sample = [&](glm::dvec2 direction_point, glm::dvec2 emitter_point) {
+    auto sample = [&](glm::dvec2 direction_point, glm::dvec2 emitter_point, Random& random) {
         glm::dvec3 value(0.0);
 
         // Cosine-weighted direction (pdf cos / pi): L itself estimates E / pi.
@@ -129,6 +161,9 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
                 }
                 value += glm::dvec3(surface.emissive) * weight;
             }
+            // L_K(y) = L_1(y) + albedo(y) / pi * E_(K-1)(y).
+            if (bounces > 1 && surface.albedo != glm::vec3(0.0f))
+                value += glm::dvec3(surface.albedo) * passed_on(y, hit.normal, bounces - 1, random);
         }
 
         // A point y on an emitter, uniform over its area (pdf probability /
@@ -182,6 +217,9 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     // and stay the same size, so E is the plain mean over all samples.
     struct Replicate {
         ScrambledPoints directions, emitter_points;
+        // Directions past the first bounce: plain random numbers, so the
+        // sets stay independent (and one bounce draws none, unchanged).
+        Random bounce_random{0};
         glm::dvec3 sum{0.0};  // of the samples' E / pi
     };
     const int replicate_count = std::max(2, budget.replicates);
@@ -191,6 +229,8 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
         r.directions = {random.next(), random.next()};
         if (sample_emitters) r.emitter_points = {random.next(), random.next()};
     }
+    if (bounces > 1)
+        for (Replicate& r : replicates) r.bounce_random.state = random.next();
     auto estimate = [&](long long points, glm::dvec3& error) {
         glm::dvec3 mean(0.0);
         for (const Replicate& r : replicates) mean += r.sum / double(points);
@@ -207,7 +247,8 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     // Points per set between stop tests, and the most rays one more point in
     // every set can cost: the caps are never passed.
     const long long step = std::max(1, (budget.batch + replicate_count - 1) / replicate_count);
-    const long long most_per_point = (sample_emitters ? 2LL : 1LL) * replicate_count;
+    const long long most_per_point =
+        ((sample_emitters ? 2LL : 1LL) + std::max(0, bounces - 1)) * replicate_count;
     const long long ceiling_cap = std::max(budget.max_rays, budget.ceiling_max_rays);
     long long points = 0, cap = budget.max_rays;
     glm::dvec3 irradiance(0.0), error(0.0);
@@ -219,7 +260,8 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
             for (Replicate& r : replicates)
                 r.sum += sample(
                     r.directions.point(index, reversed_y),
-                    sample_emitters ? r.emitter_points.point(index, reversed_y) : glm::dvec2(0.0));
+                    sample_emitters ? r.emitter_points.point(index, reversed_y) : glm::dvec2(0.0),
+                    r.bounce_random);
         }
         irradiance = estimate(points, error);
         // The error estimate from a few sets is itself noisy, and stopping on

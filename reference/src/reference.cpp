@@ -211,9 +211,10 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                 for (int x = 0; x < w; ++x) {
                     const std::size_t i = std::size_t(y) * w + x;
                     if (out.depth_layer0.pixels[i] <= 0.0f) continue;
-                    const IrradianceSample s = irradiance_at(
-                        scene, positions[i], normals[i], settings.radiosity_radius,
-                        settings.irradiance_rays, stream_seed(settings.seed, pixels + i));
+                    const IrradianceSample s =
+                        irradiance_at(scene, positions[i], normals[i], settings.radiosity_radius,
+                                      settings.irradiance_rays,
+                                      stream_seed(settings.seed, pixels + i), settings.bounces);
                     for (int c = 0; c < 3; ++c) {
                         out.irradiance.pixels[3 * i + c] = float(s.irradiance[c]);
                         out.irradiance_standard_error.pixels[3 * i + c] =

@@ -3,15 +3,22 @@
 // sees every surface within the radius: the area estimator must find the
 // truth's mean, and the published normalisation must not. The truth is an
 // independent Monte Carlo integral of the definition in reference.hpp;
-// nothing here is a value recorded from the shader.
+// nothing here is a value recorded from the shader. Also atrium's banners,
+// which a second layer should let tint the floor before them (a target, 2
+// layers against 1, with the misses in the targets table).
 #include "deepgi/context.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "support/targets.hpp"
 
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -85,7 +92,11 @@ spiral::test::TargetTable& targets() {
         {{"area/ref-crease/relative abs(bias)/8 frames", {0.065, "measured 0.057"}},
          {"area/ref-board/relative abs(bias)/8 frames", {0.105, "measured 0.095"}},
          {"area/ref-crease/relative MAE/8 frames", {0.155, "measured 0.14"}},
-         {"area/ref-board/relative MAE/8 frames", {0.19, "measured 0.17"}}});
+         {"area/ref-board/relative MAE/8 frames", {0.19, "measured 0.17"}},
+         // The blue banner (x = -4, seen obliquely): with two layers the
+         // floor before it turns away from blue (tint 1 layer -0.047, 2
+         // layers -0.111 at 192x108); not investigated.
+         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.071, "measured 0.064"}}});
     return table;
 }
 
@@ -135,6 +146,96 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     // The published normalisation is far off on the same pixels (measured
     // +300%), so the bounds above tell the estimators apart.
     CHECK(published.bias > 0.5 * area.truth_mean);
+}
+
+namespace {
+
+// The banner colours of atrium's far side (side 0 of make_atrium in
+// scene_builtin.cpp, copied): banner i hangs at x = 2 (i - 2), z = -7.3,
+// 1.1 m wide, directly behind a column at z = -6 that hides most of it
+// from the default camera; only layer 1 holds what the column hides.
+constexpr glm::vec3 far_banners[] = {{0.05f, 0.12f, 0.80f},
+                                     {0.85f, 0.68f, 0.04f},
+                                     {0.05f, 0.70f, 0.15f},
+                                     {0.72f, 0.05f, 0.62f},
+                                     {0.80f, 0.04f, 0.04f}};
+
+// Mean over the floor in front of banner i (within its width, from the
+// banner to 2.3 m before it) of E's chromaticity toward the banner's:
+// (e - 1/3) . (b - 1/3) / |b - 1/3|, e = E / sum E, b the banner's.
+std::array<double, 5> banner_tint(const FloatImage& e, const FloatImage& depth,
+                                  const Camera& camera, const RenderSettings& settings,
+                                  std::array<int, 5>& counts) {
+    const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(camera));
+    std::array<double, 5> sums{};
+    counts = {};
+    for (int y = 0; y < depth.height; ++y) {
+        for (int x = 0; x < depth.width; ++x) {
+            const float d = depth.at(x, y);
+            if (d <= 0.0f) continue;
+            const glm::vec3 ray =
+                camera_ray_direction(camera, settings, float(x) + 0.5f, float(y) + 0.5f);
+            const glm::vec3 p = glm::vec3(camera_to_world * glm::vec4(ray * d, 1.0f));
+            if (p.y > 0.02f || p.z < -7.25f || p.z > -4.95f) continue;
+            const int i = int(std::lround(p.x / 2.0f)) + 2;
+            if (i < 0 || i > 4 || std::abs(p.x - 2.0f * float(i - 2)) > 0.55f) continue;
+            const glm::dvec3 irradiance(e.at(x, y, 0), e.at(x, y, 1), e.at(x, y, 2));
+            const double total = irradiance.x + irradiance.y + irradiance.z;
+            if (!(total > 0.0)) continue;
+            const glm::dvec3 b = glm::dvec3(far_banners[i]) /
+                                 double(far_banners[i].x + far_banners[i].y + far_banners[i].z);
+            const glm::dvec3 toward = glm::normalize(b - 1.0 / 3.0);
+            sums[std::size_t(i)] += glm::dot(irradiance / total - 1.0 / 3.0, toward);
+            ++counts[std::size_t(i)];
+        }
+    }
+    for (int i = 0; i < 5; ++i) sums[std::size_t(i)] /= std::max(counts[std::size_t(i)], 1);
+    return sums;
+}
+
+}  // namespace
+
+// The banners of atrium hang behind the columns, so layer 0 holds only
+// their edges; a second layer should add the light of the hidden part to
+// the floor in front of them, which turns toward the banner's colour. The
+// target: for every banner, the floor's tint toward it is higher with two
+// layers than with one. A banner that misses it is listed in the targets
+// table (a regression bound at the measured shortfall keeps it from
+// getting worse).
+TEST_CASE("radiosity accuracy: atrium's banners tint the floor before them more with two layers",
+          "[radiosity-accuracy]") {
+    const Scene scene = load_scene("atrium");
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    std::array<double, 5> tint[2];
+    std::array<int, 5> counts[2];
+    for (const int layers : {1, 2}) {
+        RenderSettings settings = accuracy_settings(RadiosityMethod::area);
+        settings.radiosity.layers = layers;
+        // The scene's lengths as deepgi picks them (docs/deepgi.md, "Scene
+        // scale"): a 1 m radius projects to a few pixels at the banners.
+        settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
+        settings = resolve_auto_lengths(settings, scene_bounding_radius(scene));
+        Renderer renderer(scene, settings, loader);
+        for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
+        tint[layers - 1] = banner_tint(renderer.read_pass_output("radiosity-irradiance-layer0"),
+                                       renderer.read_pass_output("gbuffer-depth-layer0"),
+                                       scene.default_camera, settings, counts[layers - 1]);
+    }
+    for (int i = 0; i < 5; ++i) {
+        const auto k = std::size_t(i);
+        INFO("banner " << i << ": " << counts[0][k] << " floor pixels, tint 1 layer " << tint[0][k]
+                       << ", 2 layers " << tint[1][k]);
+        WARN("atrium banner " << i << ": floor tint toward it, 1 layer " << tint[0][k]
+                              << ", 2 layers " << tint[1][k] << " (" << counts[0][k] << " pixels)");
+        REQUIRE(counts[0][k] > 20);
+        REQUIRE(counts[1][k] > 20);
+        // Target: two layers tint more, i.e. (1 layer - 2 layers) <= 0.
+        targets().check_at_most(fmt::format("atrium/banner {}", i),
+                                "floor tint, 1 layer - 2 layers", "8 frames",
+                                tint[0][k] - tint[1][k], 0.0);
+    }
+    targets().write();
 }
 
 }  // namespace deepgi::test

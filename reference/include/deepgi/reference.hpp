@@ -206,8 +206,20 @@ struct IrradianceRayBudget {
 glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& hit,
                                     glm::vec3 position);
 
+// With `bounces` K > 1, E_K instead: the same integral of L_K, where
+//     L_K(y) = L_1(y) + albedo(y) / pi * E_(K-1)(y),   E_0 = 0,
+// each E_k(y) over the hemisphere of y's geometric normal with the same
+// radius window and front faces only; L_1 is L above. This is deep
+// radiosity's B(Y) after K frames of rho_prop 1 (boost 1, no clamp), whose
+// E_prev is last frame's E. The bounces past the first are one
+// cosine-weighted path per sample (key light and emissive at each vertex,
+// no emitter sampling there), with independent random directions per set,
+// so the sets stay independent and the standard error stays honest. K = 1
+// is the estimator above, draw for draw. Each further bounce is one more
+// ray, counted against the caps.
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
-                               float radius, const IrradianceRayBudget& budget, std::uint64_t seed);
+                               float radius, const IrradianceRayBudget& budget, std::uint64_t seed,
+                               int bounces = 1);
 
 // The mirror reflection at a layer-0 point X of a mirror (docs/reflections.md,
 // "Against the ray tracer"): the ray leaves X along r = reflect(d, n_s), d
@@ -235,6 +247,7 @@ struct ReferenceSettings {
     bool ambient_visibility = true;  // trace AO
     bool irradiance = false;         // trace one-bounce irradiance
     float radiosity_radius = 1.0f;   // m, as deepgi --radiosity-radius
+    int bounces = 1;                 // K of irradiance_at: E_K instead of E_1
     IrradianceRayBudget irradiance_rays;
     // Trace the mirror reflection of every mirror pixel of layer 0 (under
     // render.mirror_roughness); a scene without mirrors traces nothing and
@@ -259,7 +272,7 @@ struct ReferenceImages {
     FloatImage standard_error;      // Monte Carlo standard error of AV
     FloatImage rays;                // rays spent per pixel
     // Only when ReferenceSettings::irradiance (empty otherwise):
-    FloatImage irradiance;                 // RGB one-bounce E (0 on sky)
+    FloatImage irradiance;                 // RGB E_K, K = bounces (0 on sky)
     FloatImage irradiance_standard_error;  // RGB, per channel
     FloatImage irradiance_rays;            // rays spent per pixel
     // RGB direct light reflected at layer 0 (emissive excluded): what the
