@@ -3,6 +3,8 @@
 //   none               peel, layer 0: nearest surface, no test
 //   PEEL_SECOND_LAYER  peel, layer 1 against this frame's layer-0 depth
 //   SINGLE_PASS        previous / reproject: gl_Layer says which layer
+//   + PREDICTION_LAYER delay / predict: also layer 2, depth only, placed by the
+//                      next frame's camera (gbuffer.geom)
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
@@ -14,6 +16,9 @@ in GBufferVertex {
   float previous_camera_depth;
   vec4 current_clip;
   vec4 previous_clip;
+#if defined(PREDICTION_LAYER)
+  vec4 next_clip;
+#endif
 } fragment_in;
 
 layout(location = DEEPGI_GBUFFER_OUTPUT_NORMAL) out vec2 out_normal;
@@ -74,6 +79,17 @@ void main() {
   if (has_emissive_texture != 0) emissive *= texture(emissive_texture, fragment_in.uv).rgb;
   // An alpha-masked hole is no surface in either layer, so layer 1 sees through it too.
   if (base_colour.a < alpha_cutoff) discard;
+#if defined(PREDICTION_LAYER)
+  // The prediction is the next frame's layer 0: nearest surface, no
+  // separation; only its depth is read, so the colour outputs stay empty.
+  if (gl_Layer == 2) {
+    out_normal = vec2(0.0);
+    out_albedo = vec4(0.0);
+    out_emissive = vec3(0.0);
+    out_motion = vec4(0.0);
+    return;
+  }
+#endif
   if (second_layer && !is_separated_from_layer0()) discard;
 
   vec3 albedo = base_colour.rgb;

@@ -14,6 +14,9 @@ out GBufferVertex {
   float previous_camera_depth;  // linear, previous frame's camera (reproject)
   vec4 current_clip;
   vec4 previous_clip;
+#if defined(PREDICTION_LAYER)
+  vec4 next_clip;  // the next frame's camera (delay, predict): the third layer's position
+#endif
 } vertex_out;
 
 void main() {
@@ -27,5 +30,8 @@ void main() {
   vertex_out.previous_camera_depth = -(frame.previous_view * world).z;
   vertex_out.current_clip = frame.projection * camera_position;
   vertex_out.previous_clip = frame.previous_view_projection * world;
+#if defined(PREDICTION_LAYER)
+  vertex_out.next_clip = frame.next_view_projection * world;
+#endif
   gl_Position = vertex_out.current_clip;
 }

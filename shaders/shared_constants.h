@@ -72,6 +72,11 @@ struct FrameConstants {
   float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
 
   vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
+
+  // The next frame's guard-banded view-projection: the delay generator's
+  // given camera, the predict generator's extrapolated one (this frame's
+  // camera for the other generators, which do not read it).
+  mat4 next_view_projection;
 };
 
 #endif

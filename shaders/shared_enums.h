@@ -16,6 +16,8 @@
 #define DEEPGI_GENERATOR_PEEL 0
 #define DEEPGI_GENERATOR_PREVIOUS 1
 #define DEEPGI_GENERATOR_REPROJECT 2
+#define DEEPGI_GENERATOR_DELAY 3    // knows the next frame's camera (one frame of latency)
+#define DEEPGI_GENERATOR_PREDICT 4  // extrapolates the next frame's camera
 
 #define DEEPGI_LIGHT_DIRECTIONAL 0
 #define DEEPGI_LIGHT_SPOT 1

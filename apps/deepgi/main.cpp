@@ -157,8 +157,13 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     // A labelled bar for long runs, only where someone watches.
     const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;
     for (int frame = 0; frame < options.frames; ++frame) {
-        renderer.render(options.camera_path ? deepgi::camera_on_path(scene.camera_path, frame)
-                                            : scene.default_camera);
+        // The next frame's camera too, for the delay generator: the headless
+        // run knows its whole path, so it runs one frame behind it at no cost.
+        if (options.camera_path)
+            renderer.render(deepgi::camera_on_path(scene.camera_path, frame),
+                            deepgi::camera_on_path(scene.camera_path, frame + 1));
+        else
+            renderer.render(scene.default_camera, scene.default_camera);
         if (show_progress) {
             const int width = 40, filled = width * (frame + 1) / options.frames;
             fmt::print(stderr, "\rdeepgi: frames rendered [{:<{}}] {}/{}",
@@ -233,7 +238,10 @@ int main(int argc, char** argv) {
     app.add_option("--output", options.output, "PNG file to write (headless)")
         ->default_str("none; --headless needs one");
     app.add_option("--generator", options.generator,
-                   "Deep G-buffer generator: " + deepgi::enum_name_list<deepgi::Generator>());
+                   "Deep G-buffer generator: " + deepgi::enum_name_list<deepgi::Generator>() +
+                       " (peel: two passes; previous, reproject: one pass against the last "
+                       "frame; delay, predict: one pass against a third depth layer drawn "
+                       "with the next frame's camera, known or extrapolated)");
     app.add_option("--view", options.view,
                    "Image to show: " + deepgi::enum_name_list<deepgi::DebugView>());
     app.add_option("--dump", options.dump,

@@ -145,7 +145,7 @@ glm::vec2 temporal_sample(std::uint32_t k) {
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
-                                    const Camera& previous) {
+                                    const Camera& previous, const Camera& next) {
     const RenderSettings& settings = state.in_use;
     const FrameLayout layout = frame_layout(settings);
     const KeyLight& light = state.scene.key_light;
@@ -197,6 +197,8 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
     constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);
+    constants.next_view_projection =
+        guard_band_projection(next, settings) * camera_view_matrix(next);
     return constants;
 }
 
@@ -207,7 +209,8 @@ bool wants_cpu_clock(TimingMode mode) {
 }
 
 // One frame: the enabled passes in list order.
-void render_frame(RendererState& state, const Camera& camera, CameraMotion motion) {
+void render_frame(RendererState& state, const Camera& camera, const Camera& next_camera,
+                  CameraMotion motion) {
     FrameResources& frame = state.frame;
     if (motion == CameraMotion::cut) frame.invalidate_history("camera cut");
     frame.camera = camera;
@@ -215,7 +218,13 @@ void render_frame(RendererState& state, const Camera& camera, CameraMotion motio
         frame.previous_camera = camera;
         state.temporal_frame = 0;
     }
-    const FrameConstants constants = make_frame_constants(state, camera, frame.previous_camera);
+    // Predict's next camera continues the motion of the last two frames (none
+    // after an invalidation, as previous_camera is then this camera).
+    const Camera next = state.in_use.generator == Generator::predict
+                            ? extrapolate_camera(frame.previous_camera, camera)
+                            : next_camera;
+    const FrameConstants constants =
+        make_frame_constants(state, camera, frame.previous_camera, next);
     glNamedBufferSubData(state.frame_constants.get(), 0, sizeof(constants), &constants);
     glBindBufferBase(GL_UNIFORM_BUFFER, DEEPGI_UBO_FRAME, state.frame_constants.get());
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -289,7 +298,26 @@ Renderer::~Renderer() {
 }
 
 void Renderer::render(const Camera& camera, CameraMotion motion) {
-    render_frame(*state_, camera, motion);
+    render_frame(*state_, camera, camera, motion);
+}
+
+void Renderer::render(const Camera& camera, const Camera& next_camera, CameraMotion motion) {
+    render_frame(*state_, camera, next_camera, motion);
+}
+
+Camera extrapolate_camera(const Camera& previous, const Camera& current) {
+    Camera next = current;
+    next.position = current.position + (current.position - previous.position);
+    // The yaw step the short way round, so a path crossing +-pi keeps turning
+    // the way it turned.
+    constexpr float pi = 3.14159265358979f;
+    float yaw_step = current.yaw - previous.yaw;
+    if (yaw_step > pi) yaw_step -= 2.0f * pi;
+    if (yaw_step < -pi) yaw_step += 2.0f * pi;
+    next.yaw = current.yaw + yaw_step;
+    // Kept short of straight up or down, where the view would flip.
+    next.pitch = std::clamp(current.pitch + (current.pitch - previous.pitch), -1.55f, 1.55f);
+    return next;
 }
 
 void Renderer::set_settings(const RenderSettings& settings) {

@@ -15,10 +15,12 @@ namespace deepgi {
 
 namespace {
 
-constexpr std::array<EnumName<Generator>, 3> generator_table = {{
+constexpr std::array<EnumName<Generator>, 5> generator_table = {{
     {Generator::peel, "peel"},
     {Generator::previous, "previous"},
     {Generator::reproject, "reproject"},
+    {Generator::delay, "delay"},
+    {Generator::predict, "predict"},
 }};
 
 constexpr std::array<EnumName<DebugView>, 20> view_table = {{

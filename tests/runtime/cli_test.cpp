@@ -67,7 +67,7 @@ void require_one_line_error(const std::string& arguments, const std::string& exp
 TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
     require_one_line_error("--headless --size 0x90", "--size");
     require_one_line_error("--headless --size big", "--size");
-    require_one_line_error("--headless --size 160x90 --generator delay", "--generator");
+    require_one_line_error("--headless --size 160x90 --generator oracle", "--generator");
     require_one_line_error("--headless --size 160x90 --min-separation -1", "--min-separation");
     require_one_line_error("--headless --size 160x90 --frames 0", "--frames");
     require_one_line_error("--headless --size 160x90 --no-such-option", "no-such-option");

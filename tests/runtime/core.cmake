@@ -14,6 +14,16 @@ target_compile_definitions(deepgi_runtime_tests PRIVATE DEEPGI_EXECUTABLE="$<TAR
 add_dependencies(deepgi_runtime_tests deepgi)
 catch_discover_tests(deepgi_runtime_tests PROPERTIES LABELS runtime TIMEOUT 300)
 
+# The delay and predict generators against peel, and the memory they add.
+add_executable(deepgi_generator_prediction_tests
+  ${CMAKE_CURRENT_LIST_DIR}/generator_prediction_test.cpp)
+target_link_libraries(deepgi_generator_prediction_tests PRIVATE deepgi::runtime spiral_catch_main
+                                                                fmt::fmt)
+target_compile_definitions(deepgi_generator_prediction_tests
+                           PRIVATE DEEPGI_EXECUTABLE="$<TARGET_FILE:deepgi>")
+add_dependencies(deepgi_generator_prediction_tests deepgi)
+catch_discover_tests(deepgi_generator_prediction_tests PROPERTIES LABELS runtime TIMEOUT 300)
+
 # The hidden GLFW window under Xvfb must render the same image as EGL.
 find_program(DEEPGI_XVFB_RUN xvfb-run)
 if(DEEPGI_XVFB_RUN)

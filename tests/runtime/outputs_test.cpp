@@ -19,7 +19,8 @@ TEST_CASE("outputs: no NaN or Inf in any pass output, for every scene and genera
     HeadlessContext context;
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
         const Scene scene = make_builtin_scene(scene_name);
-        for (Generator generator : {Generator::peel, Generator::previous, Generator::reproject}) {
+        for (Generator generator : {Generator::peel, Generator::previous, Generator::reproject,
+                                    Generator::delay, Generator::predict}) {
             RenderSettings settings;
             settings.width = 160;
             settings.height = 90;
@@ -27,7 +28,8 @@ TEST_CASE("outputs: no NaN or Inf in any pass output, for every scene and genera
             settings.shadow_map_size = 512;
             Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
             for (int frame = 0; frame < 3; ++frame)
-                renderer.render(camera_on_path(scene.camera_path, frame * 4));
+                renderer.render(camera_on_path(scene.camera_path, frame * 4),
+                                camera_on_path(scene.camera_path, frame * 4 + 4));
             for (const auto& name : renderer.pass_output_names()) {
                 INFO(scene_name << " " << to_string(generator) << " " << name);
                 REQUIRE(deepgi::test::all_finite(renderer.read_pass_output(name)));

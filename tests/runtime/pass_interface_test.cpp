@@ -179,13 +179,13 @@ void check_round_trip(int expected_count) {
 }  // namespace
 
 TEST_CASE("settings: every enum's name table round-trips", "[runtime][settings]") {
-    check_round_trip<Generator>(3);
+    check_round_trip<Generator>(5);
     check_round_trip<TimingMode>(3);
     // One row per DEEPGI_VIEW_* value, the shader's switch covers 0 to 18.
     check_round_trip<DebugView>(20);
     for (int value = DEEPGI_VIEW_FINAL; value <= DEEPGI_VIEW_RADIOSITY_PREPARED; ++value)
         CHECK(to_string(static_cast<DebugView>(value)) != "?");
-    CHECK(enum_name_list<Generator>() == "peel, previous, reproject");
+    CHECK(enum_name_list<Generator>() == "peel, previous, reproject, delay, predict");
 }
 
 TEST_CASE("settings: an out-of-range value is rejected by validate() with one message",
@@ -193,7 +193,8 @@ TEST_CASE("settings: an out-of-range value is rejected by validate() with one me
     RenderSettings settings = settings_at(64, 32);
     REQUIRE_NOTHROW(validate(settings));
     settings.generator = static_cast<Generator>(7);
-    const std::string expected = "--generator value 7 is not one of peel, previous, reproject";
+    const std::string expected =
+        "--generator value 7 is not one of peel, previous, reproject, delay, predict";
     CHECK_THROWS_WITH(validate(settings), expected);
     // The renderer rejects it through the same check, with the same words.
     HeadlessContext context;
@@ -208,8 +209,9 @@ TEST_CASE("settings: an out-of-range value is rejected by validate() with one me
     CHECK_THROWS_WITH(validate(settings), Catch::Contains("--ao-max-mip"));
     settings.depth_pyramid.max_mip_level = limits::max_ao_mip_level;
     CHECK_NOTHROW(validate(settings));
-    CHECK_THROWS_WITH(parse_generator("--generator", "delay"),
-                      "--generator 'delay' is not one of peel, previous, reproject");
+    CHECK_THROWS_WITH(
+        parse_generator("--generator", "oracle"),
+        "--generator 'oracle' is not one of peel, previous, reproject, delay, predict");
 }
 
 // The example pass (example_pass/ao_complement_pass.cpp); a pass of the

@@ -75,8 +75,8 @@ TEST_CASE("window: script errors name the file, the line and the problem", "[run
     CHECK(script_error("frame 1 set ao-layers 3") == "s.txt:1: --ao-layers must be 1 or 2, got 3");
     CHECK(script_error("frame 1 set radiosity-alpha 1") ==
           "s.txt:1: --radiosity-alpha must be a number in [0, 1)");
-    CHECK(script_error("frame 1 set generator delay") ==
-          "s.txt:1: generator 'delay' is not one of peel, previous, reproject");
+    CHECK(script_error("frame 1 set generator oracle") ==
+          "s.txt:1: generator 'oracle' is not one of peel, previous, reproject, delay, predict");
     CHECK(script_error("frame 1 set radiosity-method mean") ==
           "s.txt:1: radiosity-method 'mean' is not one of area, published");
     CHECK(script_error("frame 1 set light-colour 1 -1 1") ==

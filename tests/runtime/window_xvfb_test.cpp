@@ -137,3 +137,30 @@ TEST_CASE("window: a dropped file that is not glTF keeps the scene and reports w
           spiral::test::read_file(dir / "h3.png"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("window: with the delay generator the window renders what headless delay renders",
+          "[runtime][window][xvfb]") {
+    // The window runs delay one frame behind its fly camera; still, the
+    // camera it shows and the next one are the same, so the image is headless
+    // delay's. Frame 0 is peel; the change to delay drops history, so frames
+    // 1 to 4 are four frames of delay from scratch, as headless --frames 4.
+    const fs::path dir = spiral::test::make_scratch_dir("deepgi-window-delay");
+    const fs::path script = dir / "script.txt";
+    std::ofstream(script) << fmt::format(
+        "frame 0 set generator delay\n"
+        "frame 4 screenshot {0}/shot\n"
+        "frame 4 quit\n",
+        dir.string());
+    const std::string size = "--scene cornell --size 160x90";
+    const int status =
+        run(fmt::format("'{}' -a '{}' {} --script '{}' > '{}/out.txt' 2>&1", DEEPGI_XVFB_RUN,
+                        DEEPGI_EXECUTABLE, size, script.string(), dir.string()));
+    INFO(spiral::test::read_file(dir / "out.txt"));
+    REQUIRE(status == 0);
+    REQUIRE(run(fmt::format("'{}' --headless {} --generator delay --frames 4 --output '{}/h4.png'",
+                            DEEPGI_EXECUTABLE, size, dir.string())) == 0);
+    CHECK(spiral::test::read_file(dir / "shot/final.png") ==
+          spiral::test::read_file(dir / "h4.png"));
+    // The screenshot holds the prediction layer, which only delay and predict have.
+    CHECK(fs::exists(dir / "shot/gbuffer-depth-prediction.pfm"));
+}

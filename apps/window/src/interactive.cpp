@@ -30,8 +30,12 @@ void render_hidden_window(const Scene& scene, const RenderSettings& settings, in
     WindowContext window(settings.width, settings.height, "deepgi", false);
     Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
     for (int frame = 0; frame < frames; ++frame) {
-        renderer.render(follow_camera_path ? camera_on_path(scene.camera_path, frame)
-                                           : scene.default_camera);
+        // As headless: the next camera too, for the delay generator.
+        if (follow_camera_path)
+            renderer.render(camera_on_path(scene.camera_path, frame),
+                            camera_on_path(scene.camera_path, frame + 1));
+        else
+            renderer.render(scene.default_camera, scene.default_camera);
     }
     write_png(output_png, settings.width, settings.height, renderer.read_output_rgba8());
 }
@@ -292,6 +296,7 @@ void install_scene(WindowState& state, Scene scene, const std::string& camera) {
     state.light_angles_edit = light_angles(state.light.direction);
     state.home_camera = home;
     state.fly.camera = home;
+    state.delayed_camera.reset();  // a new scene has no last frame
     state.fly.speed = 0.25f * scene_size(state.scene);
 }
 
@@ -383,8 +388,14 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
                 state.settings_error = error.what();
                 state.light = state.renderer->key_light();
             }
-            state.renderer->render(state.fly.camera);
-            state.rendered_camera = state.fly.camera;
+            // The delay generator shows last frame's fly camera, so that
+            // this frame's camera is the next one it peels against.
+            const Camera shown = state.settings.generator == Generator::delay
+                                     ? state.delayed_camera.value_or(state.fly.camera)
+                                     : state.fly.camera;
+            state.renderer->render(shown, state.fly.camera);
+            state.rendered_camera = shown;
+            state.delayed_camera = state.fly.camera;
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();

@@ -6,6 +6,7 @@
 #include "deepgi/window_controls.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -32,6 +33,9 @@ struct WindowState {
     Camera home_camera;      // what "reset camera" returns to
     Camera rendered_camera;  // the camera of the frame on screen (camera.txt)
     FlyCamera fly;
+    // The fly camera of the last frame: with the delay generator the window
+    // shows it, one frame late, so that this frame's camera is the next one.
+    std::optional<Camera> delayed_camera;
     KeyState keys;
     bool show_panel = true;
     bool quit = false;

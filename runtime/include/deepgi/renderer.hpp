@@ -40,6 +40,11 @@ using PassFactory = std::unique_ptr<Pass> (*)(const ShaderLoader& loader, const 
 // (history is invalidated before the frame renders).
 enum class CameraMotion { continuous, cut };
 
+// The predict generator's next camera: constant velocity from `previous` to
+// `current` in position, yaw and pitch, one more step (current + (current -
+// previous)); yaw's step is taken the short way round.
+Camera extrapolate_camera(const Camera& previous, const Camera& current);
+
 // Half the diagonal of the scene's bounding box (scene units), what `auto`
 // lengths are fractions of; 1 for an empty scene.
 float scene_bounding_radius(const Scene& scene);
@@ -57,7 +62,14 @@ public:
 
     // Renders one frame. Single-pass generators compare against the previous
     // frame's layer-0 depth, so call this once per displayed frame.
+    // Without a next camera the delay generator takes the camera as still
+    // (next = camera).
     void render(const Camera& camera, CameraMotion motion = CameraMotion::continuous);
+    // The delay generator's form: `next_camera` is the camera of the frame
+    // after this one, so a caller that runs one frame behind its camera
+    // source makes delay's layer 1 exact. The other generators ignore it.
+    void render(const Camera& camera, const Camera& next_camera,
+                CameraMotion motion = CameraMotion::continuous);
 
     // Changing size reallocates every render target (no shader is rebuilt)
     // and forgets the previous frame, as does changing the radiosity layer

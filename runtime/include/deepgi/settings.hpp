@@ -18,7 +18,17 @@ enum class Generator {
     peel = DEEPGI_GENERATOR_PEEL,
     previous = DEEPGI_GENERATOR_PREVIOUS,
     reproject = DEEPGI_GENERATOR_REPROJECT,
+    // One pass that also rasterises the scene with the next frame's camera
+    // into a third depth layer, the layer 0 the next frame's layer 1 peels
+    // against: delay is given that camera, predict extrapolates it.
+    delay = DEEPGI_GENERATOR_DELAY,
+    predict = DEEPGI_GENERATOR_PREDICT,
 };
+
+// Delay and predict keep a third G-buffer layer (the prediction).
+constexpr bool generator_predicts_next_frame(Generator generator) {
+    return generator == Generator::delay || generator == Generator::predict;
+}
 
 enum class DebugView {
     final_image = DEEPGI_VIEW_FINAL,
@@ -87,7 +97,7 @@ std::optional<Enum> parse_enum(std::string_view text) {
         if (row.name == text) return row.value;
     return std::nullopt;
 }
-// "peel, previous, reproject"
+// "peel, previous, reproject, delay, predict"
 template <class Enum>
 std::string enum_name_list() {
     std::string list;

@@ -1,7 +1,10 @@
-// The two-layer deep G-buffer (docs/design.md, section 5.2) with its three generators.
-// Layer-0 depth goes into the "layer0-depth" history pair after the G-buffer
-// is built: the peel generator's second pass reads it this frame, the
-// single-pass generators read the previous frame's.
+// The two-layer deep G-buffer (docs/design.md, section 5.2) with its five generators.
+// The depth layer 1 is peeled against goes into the "layer0-depth" history
+// pair after the G-buffer is built: this frame's layer 0, which the peel
+// generator's second pass reads this frame and previous/reproject read the
+// next; or, for delay and predict, the third layer: this frame's geometry seen
+// by the next frame's camera, i.e. the next frame's layer 0 when the camera
+// arrives where expected (the paper's Delay and Predict variants).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -26,7 +29,17 @@ struct GBufferTargets {
     gl::Texture emissive;  // R11F_G11F_B10F array (layer 0 read)
     gl::Texture motion;    // RGBA16F array: pixels moved since last frame, previous linear depth
     gl::Texture depth;     // DEPTH_COMPONENT32F array, near/z (reversed, infinite)
+    // Delay and predict: 3, the third layer of each being the prediction
+    // (depth; the colour layers are there because layered rendering needs
+    // every attachment to have the layer). Otherwise DEEPGI_LAYER_COUNT.
+    int layers = DEEPGI_LAYER_COUNT;
 };
+
+constexpr int prediction_layer = 2;
+
+int gbuffer_layers(Generator generator) {
+    return generator_predicts_next_frame(generator) ? prediction_layer + 1 : DEEPGI_LAYER_COUNT;
+}
 
 void attach_layer(const gl::Framebuffer& framebuffer, const GBufferTargets& targets, int layer) {
     const GLuint fb = framebuffer.get();
@@ -70,6 +83,11 @@ public:
                                              {GL_GEOMETRY_SHADER, "gbuffer.geom"},
                                              {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
                                             "#define SINGLE_PASS 1\n");
+        prediction_pass_ =
+            loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
+                                  {GL_GEOMETRY_SHADER, "gbuffer.geom"},
+                                  {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
+                                 "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
     }
 
     std::string_view name() const override { return "gbuffer"; }
@@ -80,19 +98,35 @@ public:
                            "gbuffer.depth"}};
     }
 
+    // Delay and predict keep a third layer the others do not have, so moving
+    // between the two kinds reallocates, and the depth in the history pair
+    // changes meaning (layer 0 against the prediction), so history goes.
+    SettingsChange settings_change(const RenderSettings& before,
+                                   const RenderSettings& after) const override {
+        SettingsChange change = Pass::settings_change(before, after);
+        if (gbuffer_layers(before.generator) != gbuffer_layers(after.generator)) {
+            change.reallocate = true;
+            if (change.drop_history.empty())
+                change.drop_history =
+                    fmt::format("generator {} -> {} (the layer 1 reference changes)",
+                                to_string(before.generator), to_string(after.generator));
+        }
+        return change;
+    }
+
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
         GBufferTargets& targets = targets_;
-        targets.normal = gl::create_texture_array(GL_RG16F, width_, height_, DEEPGI_LAYER_COUNT);
-        targets.albedo = gl::create_texture_array(GL_RGBA8, width_, height_, DEEPGI_LAYER_COUNT);
+        const int layers = gbuffer_layers(frame.settings->generator);
+        targets.layers = layers;
+        targets.normal = gl::create_texture_array(GL_RG16F, width_, height_, layers);
+        targets.albedo = gl::create_texture_array(GL_RGBA8, width_, height_, layers);
         // Layered rendering needs every attachment layered, so emissive and motion
         // carry a second layer that nothing reads.
-        targets.emissive =
-            gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, DEEPGI_LAYER_COUNT);
-        targets.motion = gl::create_texture_array(GL_RGBA16F, width_, height_, DEEPGI_LAYER_COUNT);
-        targets.depth =
-            gl::create_texture_array(GL_DEPTH_COMPONENT32F, width_, height_, DEEPGI_LAYER_COUNT);
+        targets.emissive = gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, layers);
+        targets.motion = gl::create_texture_array(GL_RGBA16F, width_, height_, layers);
+        targets.depth = gl::create_texture_array(GL_DEPTH_COMPONENT32F, width_, height_, layers);
         label_texture(targets.normal, name(), "normal");
         label_texture(targets.albedo, name(), "albedo");
         label_texture(targets.emissive, name(), "emissive");
@@ -131,7 +165,8 @@ public:
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
         const SceneGpu& scene = *frame.scene_gpu;
-        for (const gl::Program* program : {&peel_first_layer_, &peel_second_layer_, &single_pass_})
+        for (const gl::Program* program :
+             {&peel_first_layer_, &peel_second_layer_, &single_pass_, &prediction_pass_})
             glProgramUniform1f(program->get(), DEEPGI_UNIFORM_MIRROR_ROUGHNESS,
                                frame.settings->mirror_roughness);
 
@@ -140,7 +175,7 @@ public:
             glBindFramebuffer(GL_FRAMEBUFFER, first_layer_framebuffer_.get());
             glUseProgram(peel_first_layer_.get());
             draw_scene(scene, peel_first_layer_.get(), material_bindings);
-            copy_layer0_depth(layer0_depth.written());
+            copy_depth_layer(0, layer0_depth.written());
 
             clear_gbuffer(second_layer_framebuffer_, 4);
             // The second layer's emissive is never written by peel; clear it too
@@ -152,6 +187,15 @@ public:
             glBindFramebuffer(GL_FRAMEBUFFER, second_layer_framebuffer_.get());
             glUseProgram(peel_second_layer_.get());
             draw_scene(scene, peel_second_layer_.get(), material_bindings);
+        } else if (generator_predicts_next_frame(frame.settings->generator)) {
+            // Delay / predict: layer 1 against the prediction the last frame
+            // made of this frame's layer 0; this frame predicts the next's.
+            glBindTextureUnit(reference_depth_binding, layer0_depth.previous());
+            clear_gbuffer(layered_framebuffer_, 4);
+            glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
+            glUseProgram(prediction_pass_.get());
+            draw_scene(scene, prediction_pass_.get(), material_bindings);
+            copy_depth_layer(prediction_layer, layer0_depth.written());
         } else {
             // Previous / reproject: compare against the previous frame's layer 0.
             glBindTextureUnit(reference_depth_binding, layer0_depth.previous());
@@ -159,7 +203,7 @@ public:
             glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
             glUseProgram(single_pass_.get());
             draw_scene(scene, single_pass_.get(), material_bindings);
-            copy_layer0_depth(layer0_depth.written());
+            copy_depth_layer(0, layer0_depth.written());
         }
         frame.publish("gbuffer.normal", targets_.normal.get());
         frame.publish("gbuffer.albedo", targets_.albedo.get());
@@ -190,20 +234,26 @@ public:
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer)
             add(fmt::format("gbuffer-albedo-layer{}", layer), targets_.albedo, layer, 3,
                 OutputDecode::srgb_to_linear);
+        // Delay and predict: this frame's geometry seen by the next frame's
+        // camera, the depth the next frame's layer 1 peels against.
+        if (targets_.layers > prediction_layer)
+            add("gbuffer-depth-prediction", targets_.depth, prediction_layer, 1,
+                OutputDecode::depth_to_metres);
         add("gbuffer-emissive-layer0", targets_.emissive, 0, 3, OutputDecode::floats);
         add("gbuffer-motion-layer0", targets_.motion, 0, 3, OutputDecode::floats_rg_as_rgb);
         return list;
     }
 
 private:
-    void copy_layer0_depth(GLuint destination) const {
-        glCopyImageSubData(targets_.depth.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, destination,
+    void copy_depth_layer(int layer, GLuint destination) const {
+        glCopyImageSubData(targets_.depth.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, destination,
                            GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
     }
 
     gl::Program peel_first_layer_;
     gl::Program peel_second_layer_;
-    gl::Program single_pass_;  // with the geometry shader
+    gl::Program single_pass_;      // with the geometry shader
+    gl::Program prediction_pass_;  // the same with a third invocation: the next frame's layer 0
     gl::Framebuffer first_layer_framebuffer_;
     gl::Framebuffer second_layer_framebuffer_;
     gl::Framebuffer layered_framebuffer_;
