@@ -72,6 +72,13 @@ struct FrameConstants {
   float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
 
   vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
+
+  // 1: compose adds the term, 0: leaves it out (--no-ao, --no-radiosity,
+  // --no-environment; reflection: the reflection pass runs this frame).
+  int ao_term;
+  int radiosity_term;
+  int environment_term;
+  int reflection_term;
 };
 
 #endif

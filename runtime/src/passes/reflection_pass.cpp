@@ -66,7 +66,7 @@ public:
         return reflections_traced(*scene_, settings);
     }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
+    PassDeclaration declaration(const RenderSettings& settings) const override {
         return {.reads = {{unit_normal, "gbuffer.normal"},
                           {unit_albedo, "gbuffer.albedo"},
                           {unit_emissive, "gbuffer.emissive"},
@@ -75,7 +75,10 @@ public:
                           {unit_backface, "backface.depth"},
                           {unit_irradiance_layer0, "radiosity.irradiance.layer0"},
                           {unit_irradiance_layer1, "radiosity.irradiance.layer1"}},
-                .writes = {"reflection.radiance", "reflection.hit"}};
+                .writes = {"reflection.radiance", "reflection.hit"},
+                // The solids behind open meshes are as thick as SAO's.
+                .value_reads = {"sao.thickness", "gbuffer.mirror_roughness"},
+                .value_writes = {{"reflection.layers", float(settings.reflection.layers)}}};
     }
 
     void resize(FrameResources& frame) override {
@@ -117,11 +120,11 @@ public:
         block_.bind({.distance = reflection_distance(settings, bounding_radius),
                      .steps = settings.reflection.steps,
                      .layers = settings.reflection.layers,
-                     .thickness = settings.ao.thickness,
+                     .thickness = frame.value("sao.thickness"),
                      .jitter = jitter_offset(frame_index_),
                      .max_level = levels_ - 1,
-                     .radiosity = settings.radiosity.enabled ? 1 : 0,
-                     .environment = settings.environment ? 1 : 0,
+                     .unused0 = 0,
+                     .unused1 = 0,
                      .edge_fade_pixels = std::max(4.0f, 0.5f * float(guard_)),
                      .facing_fade_start = 0.2f,
                      .facing_fade_end = 0.5f,
