@@ -1,7 +1,8 @@
 // The thickness-aware spiral estimator of deep SAO (docs/design.md, section
 // 5.6; docs/deep-sao.md, "The thick spiral"). Included by sao.frag where
-// AO_SPIRAL_THICK is defined; reads what sao.frag declares (the depth
-// pyramid, the back-face depths, the generated taps of ao_taps.glsl).
+// AO_METHOD is DEEPGI_AO_METHOD_SPIRAL_THICK; reads what sao.frag declares
+// (the depth pyramid, the back-face depths, the generated taps of
+// ao_taps.glsl).
 //
 // Every stored surface is the front of a solid that reaches back along its
 // camera ray to the nearest back face behind it (backface_depth.frag), or
@@ -127,4 +128,12 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
   }
   int seen = bitCount(informed);
   return seen == 0 ? 1.0 : 1.0 - occlusion / float(32 * seen);
+}
+
+// The visibility in [0, 1], raised to `intensity`; the footprint threshold
+// stands for the bias (spiral_thick_visibility).
+float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float radius,
+                    float radius_pixels, float bias, float footprint_bias, float intensity,
+                    mat2 rotation) {
+  return pow(spiral_thick_visibility(pixel, position, normal, radius, radius_pixels, footprint_bias, rotation), intensity);
 }

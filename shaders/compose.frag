@@ -25,10 +25,6 @@ layout(binding = 4) uniform sampler2DArray gbuffer_depth;
 layout(binding = 11) uniform sampler2D ambient_visibility;  // blurred deep SAO, signed
 layout(binding = 14) uniform sampler2D radiosity;    // blurred E (rgb), confidence (a)
 
-// x: AO, y: radiosity, z: environment; 0 leaves that term out (the
-// direct-only / + AO / + bounces comparison images).
-layout(location = 36) uniform ivec3 terms;
-
 layout(location = 0) out vec3 out_radiance;
 
 #include "math_constants.glsl"
@@ -39,7 +35,6 @@ layout(location = 0) out vec3 out_radiance;
 // mirror pixel is its reflectance (albedo) times the reflected radiance, plus
 // its emission; a polished metal has no diffuse term.
 layout(binding = 3) uniform sampler2D reflection_radiance;
-layout(location = 37) uniform int reflections_traced;  // 1 while the reflection pass runs
 
 void main() {
   ivec3 texel = ivec3(gl_FragCoord.xy, 0);
@@ -49,20 +44,20 @@ void main() {
   }
   vec4 albedo_and_flag = texelFetch(gbuffer_albedo, texel, 0);
   vec3 albedo = srgb_decode(albedo_and_flag.rgb);
-  if (reflections_traced != 0 && is_mirror_alpha(albedo_and_flag.a)) {
+  if (frame.reflection_term != 0 && is_mirror_alpha(albedo_and_flag.a)) {
     out_radiance = texelFetch(gbuffer_emissive, texel, 0).rgb +
                    albedo * texelFetch(reflection_radiance, texel.xy, 0).rgb;
     return;
   }
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
   vec3 world_normal = normalize(transpose(mat3(frame.view)) * normal);
-  vec4 gathered = terms.y != 0 ? texelFetch(radiosity, texel.xy, 0) : vec4(0.0);
+  vec4 gathered = frame.radiosity_term != 0 ? texelFetch(radiosity, texel.xy, 0) : vec4(0.0);
   float confidence = clamp(gathered.a, 0.0, 1.0);
-  vec3 environment = terms.z != 0 ? environment_irradiance(world_normal) : vec3(0.0);
+  vec3 environment = frame.environment_term != 0 ? environment_irradiance(world_normal) : vec3(0.0);
   vec3 irradiance = gathered.rgb + environment * (1.0 - confidence);
   // The solid-angle AV arrives signed (sao.frag): the clamp is applied here,
   // after the blur and the temporal filter have averaged its noise.
-  float visibility = terms.x != 0 ? clamp(texelFetch(ambient_visibility, texel.xy, 0).r, 0.0, 1.0) : 1.0;
+  float visibility = frame.ao_term != 0 ? clamp(texelFetch(ambient_visibility, texel.xy, 0).r, 0.0, 1.0) : 1.0;
   out_radiance = texelFetch(direct_light, texel, 0).rgb + texelFetch(gbuffer_emissive, texel, 0).rgb +
                  albedo / pi * irradiance * visibility;
 }

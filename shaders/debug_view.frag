@@ -3,6 +3,7 @@
 // cropped like the tonemap). Nothing hit shows as black.
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
+#include "math_constants.glsl"
 #include "tonemap_curve.glsl"
 
 // Bindings are this shader's own; debug_view_pass.cpp binds the same numbers.
@@ -55,11 +56,11 @@ vec3 view_colour(ivec2 pixel, int view) {
     return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * frame.exposure);
   // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER0)
-    return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (frame.exposure * 0.31830989));
+    return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (frame.exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER1)
-    return filmic_tonemap(texelFetch(radiosity_layer1, pixel, 0).rgb * (frame.exposure * 0.31830989));
+    return filmic_tonemap(texelFetch(radiosity_layer1, pixel, 0).rgb * (frame.exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_BLURRED)
-    return filmic_tonemap(texelFetch(radiosity_blurred, pixel, 0).rgb * (frame.exposure * 0.31830989));
+    return filmic_tonemap(texelFetch(radiosity_blurred, pixel, 0).rgb * (frame.exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_CONFIDENCE) return vec3(texelFetch(radiosity_layer0, pixel, 0).a);
   if (view == DEEPGI_VIEW_NORMAL_LAYER0 || view == DEEPGI_VIEW_NORMAL_LAYER1)
     return decode_normal(texelFetch(gbuffer_normal, texel, 0).xy) * 0.5 + 0.5;

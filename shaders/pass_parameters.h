@@ -16,7 +16,7 @@ struct SaoParameters {
   float q;          // screen-space radius (px) at which taps move one MIP level down
 
   int max_mip;      // deepest depth-pyramid level a tap may read
-  int method;       // DEEPGI_AO_METHOD_*
+  int unused1;      // the estimator is chosen when the program is built (AO_METHOD)
   float thickness;  // march: solid depth (m) behind a surface with no back face
   float unused0;
 };
@@ -66,14 +66,14 @@ struct ReflectionParameters {
   int layers;       // 1 or 2 layers marched against
   float thickness;  // m of solid behind a surface with no back face
 
-  int max_level;    // deepest level of the nearest-depth pyramid
-  int radiosity;    // 0: hits take no deep radiosity E
-  int environment;  // 0: no environment (misses are black)
-  int skip_steps;   // samples one long step may skip
+  int max_level;   // deepest level of the nearest-depth pyramid
+  int skip_steps;  // samples one long step may skip
+  int unused0;     // the radiosity and environment terms are the frame's
+  int unused1;     // (FrameConstants: radiosity_term, environment_term)
 
   float edge_fade_pixels;   // hits this close to the buffer's edge fade out
   float facing_fade_start;  // camera-space z of the ray direction where fading starts
   float facing_fade_end;    // ... and where the hit is gone
-  float unused;             // std140 pads the block to whole vec4s
+  float unused2;            // std140 pads the block to whole vec4s
 };
 #endif

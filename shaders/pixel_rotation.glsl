@@ -9,6 +9,7 @@
 // arithmetic modulo 2^32, so the result is the same for every coordinate the
 // renderer accepts (up to 16384) and the same on the CPU.
 
+#include "math_constants.glsl"
 #define DEEPGI_SHARED_FUNCTION
 #include "pixel_rotation_hash.h"
 
@@ -16,7 +17,7 @@ uint pixel_rotation_hash(uvec2 pixel) { return pixel_rotation_hash_xy(pixel.x, p
 
 // phi in [0, 2*pi), from the top 24 bits so the conversion to float is exact.
 float pixel_rotation_angle(uvec2 pixel) {
-  return float(pixel_rotation_hash(pixel) >> 8u) * (1.0 / 16777216.0) * 6.2831855;
+  return float(pixel_rotation_hash(pixel) >> 8u) * (1.0 / 16777216.0) * two_pi;
 }
 
 // One 2x2 matrix per pixel; each tap's offset is rotated by it instead of

@@ -161,7 +161,7 @@ bool segment_in_front(vec3 qa, vec3 qb) {
 }
 
 vec3 environment_radiance(vec3 camera_direction) {
-  if (reflection.environment == 0) return vec3(0.0);
+  if (frame.environment_term == 0) return vec3(0.0);
   return environment_irradiance(normalize(transpose(mat3(frame.view)) * camera_direction)) * inv_pi;
 }
 
@@ -170,10 +170,10 @@ vec3 lit_radiance(ivec2 p, int layer) {
   vec3 albedo = srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
   vec4 gathered = vec4(0.0);
-  if (reflection.radiosity != 0)
+  if (frame.radiosity_term != 0)
     gathered = layer == 0 ? texelFetch(irradiance_layer0, p, 0) : texelFetch(irradiance_layer1, p, 0);
   float confidence = clamp(gathered.a, 0.0, 1.0);
-  vec3 environment = reflection.environment != 0
+  vec3 environment = frame.environment_term != 0
                          ? environment_irradiance(normalize(transpose(mat3(frame.view)) * normal))
                          : vec3(0.0);
   vec3 emissive = layer == 0 ? texelFetch(gbuffer_emissive, texel, 0).rgb : vec3(0.0);

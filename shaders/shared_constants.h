@@ -73,6 +73,13 @@ struct FrameConstants {
 
   vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
 
+  // 1: compose adds the term, 0: leaves it out (--no-ao, --no-radiosity,
+  // --no-environment; reflection: the reflection pass runs this frame).
+  int ao_term;
+  int radiosity_term;
+  int environment_term;
+  int reflection_term;
+
   // The next frame's guard-banded view-projection: the delay generator's
   // given camera, the predict generator's extrapolated one (this frame's
   // camera for the other generators, which do not read it).

@@ -193,6 +193,12 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
                            : light.kind == LightKind::spot      ? DEEPGI_LIGHT_SPOT
                                                                 : DEEPGI_LIGHT_POINT;
     constants.debug_view = static_cast<int>(settings.view);
+    // Which terms compose (and the debug views) add: the frame's decision, so
+    // no pass reads another's switches.
+    constants.ao_term = settings.ao.enabled ? 1 : 0;
+    constants.radiosity_term = settings.radiosity.enabled ? 1 : 0;
+    constants.environment_term = settings.environment ? 1 : 0;
+    constants.reflection_term = reflections_traced(state.scene, settings) ? 1 : 0;
     const glm::vec2 sample = temporal_sample(state.temporal_frame);
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
@@ -240,7 +246,7 @@ void render_frame(RendererState& state, const Camera& camera, const Camera& next
         for (const PassRead& read : declaration.reads)
             if (read.binding != PassRead::unbound)
                 glBindTextureUnit(read.binding, frame.texture(read.texture));
-        frame.begin_pass(pass->name(), declaration.writes);
+        frame.begin_pass(pass->name(), declaration.writes, declaration.value_reads);
         pass->run(frame);
         frame.end_pass();
         throw_gl_errors(state, fmt::format("pass '{}'", pass->name()));
@@ -250,6 +256,15 @@ void render_frame(RendererState& state, const Camera& camera, const Camera& next
     frame.end_frame();
     state.last_camera = camera;
     ++state.temporal_frame;
+}
+
+// The values the enabled passes give each other (PassValue), by name.
+std::map<std::string, float, std::less<>> declared_values(
+    const std::vector<PassDeclaration>& declarations) {
+    std::map<std::string, float, std::less<>> values;
+    for (const PassDeclaration& declaration : declarations)
+        for (const PassValue& value : declaration.value_writes) values[value.name] = value.value;
+    return values;
 }
 
 // Every enabled pass's outputs, in pass order.
@@ -283,6 +298,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     try {
         for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
         state.declarations = check_pass_declarations(state.passes, state.in_use);
+        state.frame.set_values(declared_values(state.declarations));
         resize_passes(state);
     } catch (...) {
         // No destructor runs for a half-built renderer; the callback must not
@@ -355,6 +371,7 @@ void Renderer::set_settings(const RenderSettings& settings) {
     state.settings = settings;
     state.in_use = in_use;
     state.declarations = std::move(declarations);
+    state.frame.set_values(declared_values(state.declarations));
     if (reallocate) resize_passes(state);
     if (invalidate) state.frame.invalidate_history(reason);
     if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));

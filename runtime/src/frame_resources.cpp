@@ -27,9 +27,11 @@ void FrameResources::begin_frame_textures() {
     textures_.clear();
 }
 
-void FrameResources::begin_pass(std::string_view pass, const std::vector<std::string>& writes) {
+void FrameResources::begin_pass(std::string_view pass, const std::vector<std::string>& writes,
+                                const std::vector<std::string>& value_reads) {
     running_pass_ = pass;
     declared_writes_ = &writes;
+    declared_value_reads_ = &value_reads;
     published_.clear();
 }
 
@@ -59,6 +61,19 @@ int FrameResources::integer(std::string_view name) const {
     const auto found = integers_.find(name);
     if (found == integers_.end())
         throw GraphicsError(fmt::format("no pass has published the value '{}' yet", name));
+    return found->second;
+}
+
+float FrameResources::value(std::string_view name) const {
+    if (running_pass_.empty() || declared_value_reads_ == nullptr ||
+        std::find(declared_value_reads_->begin(), declared_value_reads_->end(), name) ==
+            declared_value_reads_->end()) {
+        throw GraphicsError(fmt::format("pass '{}' reads the value '{}', which it does not declare",
+                                        running_pass_, name));
+    }
+    const auto found = values_.find(name);
+    if (found == values_.end())
+        throw GraphicsError(fmt::format("no enabled pass writes the value '{}'", name));
     return found->second;
 }
 

@@ -69,14 +69,24 @@ public:
     // frame published before the first pass, and check what a pass published
     // against what it declared.
     void begin_frame_textures();
-    // `writes` must outlive the pass's run (the frame's checked declarations).
-    void begin_pass(std::string_view pass, const std::vector<std::string>& writes);
+    // `writes` and `value_reads` must outlive the pass's run (the frame's
+    // checked declarations).
+    void begin_pass(std::string_view pass, const std::vector<std::string>& writes,
+                    const std::vector<std::string>& value_reads = {});
     // Throws GraphicsError naming the pass and the first declared write it
     // did not publish.
     void end_pass();
     // Named integers a pass computes for later ones (e.g. the pyramid's depth).
     void publish_int(const std::string& name, int value);
     int integer(std::string_view name) const;
+    // Values the passes give each other from their settings (PassValue),
+    // set by the frame from the checked declarations whenever the settings
+    // change. value() throws GraphicsError when the running pass did not
+    // declare the read.
+    void set_values(std::map<std::string, float, std::less<>> values) {
+        values_ = std::move(values);
+    }
+    float value(std::string_view name) const;
 
     // ---- the displayed image: viewport-sized RGBA8 that the last pass writes ----
     gl::Texture display;
@@ -104,6 +114,8 @@ private:
     const std::vector<std::string>* declared_writes_ = nullptr;  // the running pass's
     std::vector<std::string> published_;                         // what it has published so far
     std::map<std::string, int, std::less<>> integers_;
+    std::map<std::string, float, std::less<>> values_;
+    const std::vector<std::string>* declared_value_reads_ = nullptr;  // the running pass's
     std::map<std::string, HistoryPair, std::less<>> history_;
     bool history_valid_ = false;
     std::vector<std::string> history_log_;

@@ -54,12 +54,26 @@ struct PassRead {
     std::string_view texture;  // the name an earlier pass writes, e.g. "gbuffer.normal"
 };
 
+// A value one pass gives the others from a setting it owns, named
+// "<pass>.<setting>" (e.g. "depth_pyramid.q", "sao.radius"). A pass reads
+// another pass's setting only this way: the settings rows it does not own
+// stay out of its code (tests/runtime/settings_owner_test.cpp).
+struct PassValue {
+    std::string name;
+    float value = 0.0f;
+};
+
 // What a pass reads and writes under given settings. Every read must be
 // written by an enabled pass earlier in the list; every write must be
-// published during run(), and nothing else may be.
+// published during run(), and nothing else may be. Values come from the
+// settings, so they are known before any pass runs: a value read must be
+// written by some enabled pass, earlier or later in the list.
 struct PassDeclaration {
     std::vector<PassRead> reads;
     std::vector<std::string> writes;  // names published with frame.publish()
+    // Most passes have none: default-initialised, so they may leave both out.
+    std::vector<std::string> value_reads = {};  // other passes' values, read with frame.value()
+    std::vector<PassValue> value_writes = {};   // this pass's, named "<this pass>.<setting>"
 };
 
 // What a settings change costs a pass (Pass::settings_change).
@@ -107,8 +121,9 @@ SettingsChange rows_settings_change(const RenderSettings& before, const RenderSe
 // Checks the declarations of the enabled passes in list order and returns
 // them, one per pass (empty for a disabled one), for the frame to bind and
 // enforce until the settings change; throws GraphicsError with one line
-// naming the pass and the texture when a pass reads what no earlier enabled
-// pass writes, or two passes write one name.
+// naming the pass and the texture or value when a pass reads a texture no
+// earlier enabled pass writes or a value no enabled pass writes, two passes
+// write one name, or a pass writes a value not named after itself.
 std::vector<PassDeclaration> check_pass_declarations(
     const std::vector<std::unique_ptr<Pass>>& passes, const RenderSettings& settings);
 

@@ -34,6 +34,34 @@ std::vector<PassDeclaration> check_pass_declarations(
             }
         }
     }
+    // Values: any enabled pass may write them, before or after the reader.
+    std::map<std::string, std::string, std::less<>> value_writer;  // value -> pass
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+        const std::string_view pass = passes[i]->name();
+        for (const PassValue& value : declarations[i].value_writes) {
+            if (value.name.size() <= pass.size() + 1 ||
+                value.name.compare(0, pass.size(), pass) != 0 || value.name[pass.size()] != '.') {
+                throw GraphicsError(fmt::format(
+                    "pass '{}' writes the value '{}', which is not named '{}.<setting>'", pass,
+                    value.name, pass));
+            }
+            const auto [found, inserted] = value_writer.emplace(value.name, std::string(pass));
+            if (!inserted) {
+                throw GraphicsError(
+                    fmt::format("pass '{}' writes the value '{}', which pass '{}' already writes",
+                                pass, value.name, found->second));
+            }
+        }
+    }
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+        for (const std::string& name : declarations[i].value_reads) {
+            if (value_writer.find(name) == value_writer.end()) {
+                throw GraphicsError(
+                    fmt::format("pass '{}' reads the value '{}', which no enabled pass writes",
+                                passes[i]->name(), name));
+            }
+        }
+    }
     return declarations;
 }
 

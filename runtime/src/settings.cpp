@@ -160,11 +160,11 @@ void validate(const RenderSettings& settings) {
 namespace {
 
 // A float field's accessors, as plain function pointers for the table.
-#define DEEPGI_FLOAT_FIELD(member)                                  \
-    .get = [](const RenderSettings& s) { return float(s.member); }, \
+#define DEEPGI_FLOAT_FIELD(member)                                                    \
+    .field = #member, .get = [](const RenderSettings& s) { return float(s.member); }, \
     .set = [](RenderSettings& s, float value) { s.member = value; }
-#define DEEPGI_INT_FIELD(member)                                    \
-    .get = [](const RenderSettings& s) { return float(s.member); }, \
+#define DEEPGI_INT_FIELD(member)                                                      \
+    .field = #member, .get = [](const RenderSettings& s) { return float(s.member); }, \
     .set = [](RenderSettings& s, float value) { s.member = int(std::lround(value)); }
 
 constexpr float unlimited = std::numeric_limits<float>::infinity();
@@ -284,18 +284,6 @@ const std::array<NumericSetting, 27> numeric_table = {{
      .slider_max = 8.0f,
      .logarithmic = true,
      DEEPGI_FLOAT_FIELD(ao.intensity)},
-    {.name = "ao-q",
-     .label = "q (px per MIP)",
-     .group = "ao",
-     .owner = "sao",
-     .help = "Deep SAO and radiosity: tap radius per MIP level step",
-     .unit = "pixels",
-     .minimum = limits::min_ao_q,
-     .maximum = unlimited,
-     .slider_min = limits::min_ao_q,
-     .slider_max = 64.0f,
-     .logarithmic = true,
-     DEEPGI_FLOAT_FIELD(ao.q)},
     {.name = "ao-layers",
      .label = "layers",
      .group = "ao",
@@ -307,16 +295,29 @@ const std::array<NumericSetting, 27> numeric_table = {{
      .slider_min = 1.0f,
      .slider_max = float(limits::max_ao_layers),
      DEEPGI_INT_FIELD(ao.layers)},
-    {.name = "ao-max-mip",
-     .label = "max MIP level",
+    {.name = "pyramid-q",
+     .label = "pyramid q (px per MIP)",
      .group = "ao",
      .owner = "depth_pyramid",
-     .help = "Deepest depth-pyramid level built, and read by the gathers",
+     .help = "Depth pyramid: tap radius per MIP level step of the gathers that read it (deep "
+             "SAO and radiosity)",
+     .unit = "pixels",
+     .minimum = limits::min_pyramid_q,
+     .maximum = unlimited,
+     .slider_min = limits::min_pyramid_q,
+     .slider_max = 64.0f,
+     .logarithmic = true,
+     DEEPGI_FLOAT_FIELD(depth_pyramid.q)},
+    {.name = "pyramid-max-mip",
+     .label = "pyramid max MIP level",
+     .group = "ao",
+     .owner = "depth_pyramid",
+     .help = "Depth pyramid: deepest level built, and read by the gathers",
      .integer = true,
      .minimum = 0.0f,
-     .maximum = float(limits::max_ao_mip_level),
+     .maximum = float(limits::max_pyramid_mip_level),
      .slider_min = 0.0f,
-     .slider_max = float(limits::max_ao_mip_level),
+     .slider_max = float(limits::max_pyramid_mip_level),
      .effect = reallocate,
      DEEPGI_INT_FIELD(depth_pyramid.max_mip_level)},
     {.name = "ao-alpha",

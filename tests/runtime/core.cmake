@@ -43,17 +43,21 @@ add_test(NAME deepgi_image_identity
           -P ${CMAKE_CURRENT_LIST_DIR}/image_identity.cmake)
 set_tests_properties(deepgi_image_identity PROPERTIES LABELS runtime TIMEOUT 300)
 
-# The pass interface, frame resources and settings module (runtime/src is
+# The pass interface, frame resources and settings module, and who owns each
+# settings row (settings_owner_test.cpp reads runtime/src; runtime/src is
 # private to the library, so this suite adds it to its include path).
 # example_pass/ is a pass written as one of runtime/src/passes would be,
 # compiled into this test only, with its shader in the same folder.
 add_executable(deepgi_pass_interface_tests ${CMAKE_CURRENT_LIST_DIR}/pass_interface_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/settings_owner_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/example_pass/ao_complement_pass.cpp)
 target_link_libraries(deepgi_pass_interface_tests PRIVATE deepgi::runtime spiral_catch_main)
 target_include_directories(deepgi_pass_interface_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/tests)
 target_compile_definitions(deepgi_pass_interface_tests
                            PRIVATE DEEPGI_ARCHITECTURE_DOC="${PROJECT_SOURCE_DIR}/docs/architecture.md"
-                                   DEEPGI_EXAMPLE_PASS_DIR="${CMAKE_CURRENT_LIST_DIR}/example_pass")
+                                   DEEPGI_EXAMPLE_PASS_DIR="${CMAKE_CURRENT_LIST_DIR}/example_pass"
+                                   DEEPGI_PASSES_DIR="${PROJECT_SOURCE_DIR}/runtime/src/passes"
+                                   DEEPGI_FRAME_SOURCE="${PROJECT_SOURCE_DIR}/runtime/src/frame.cpp")
 catch_discover_tests(deepgi_pass_interface_tests PROPERTIES LABELS runtime TIMEOUT 300)
 
 # The interactive window: keys, settings table, script parser and the

@@ -205,9 +205,9 @@ TEST_CASE("settings: an out-of-range value is rejected by validate() with one me
     settings.view = static_cast<DebugView>(-1);
     CHECK_THROWS_AS(validate(settings), InputError);
     settings = settings_at(64, 32);
-    settings.depth_pyramid.max_mip_level = limits::max_ao_mip_level + 1;
-    CHECK_THROWS_WITH(validate(settings), Catch::Contains("--ao-max-mip"));
-    settings.depth_pyramid.max_mip_level = limits::max_ao_mip_level;
+    settings.depth_pyramid.max_mip_level = limits::max_pyramid_mip_level + 1;
+    CHECK_THROWS_WITH(validate(settings), Catch::Contains("--pyramid-max-mip"));
+    settings.depth_pyramid.max_mip_level = limits::max_pyramid_mip_level;
     CHECK_NOTHROW(validate(settings));
     CHECK_THROWS_WITH(
         parse_generator("--generator", "oracle"),
@@ -445,18 +445,26 @@ namespace {
 std::string declaration_table(const RenderSettings& settings) {
     const Scene scene = make_builtin_scene("cornell");
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    std::string table = "| pass | reads (texture unit) | writes |\n|---|---|---|\n";
+    std::string table =
+        "| pass | reads (texture unit) | writes | values read | values written |\n"
+        "|---|---|---|---|---|\n";
     for (PassFactory make : default_pass_list()) {
         const std::unique_ptr<Pass> pass = make(loader, scene);
         const PassDeclaration declaration = pass->declaration(settings);
-        std::string reads, writes;
+        std::string reads, writes, value_reads, value_writes;
+        for (const std::string& name : declaration.value_reads)
+            value_reads += fmt::format("{}`{}`", value_reads.empty() ? "" : ", ", name);
+        for (const PassValue& value : declaration.value_writes)
+            value_writes += fmt::format("{}`{}`", value_writes.empty() ? "" : ", ", value.name);
         for (const PassRead& read : declaration.reads)
             reads +=
                 fmt::format("{}`{}` ({})", reads.empty() ? "" : ", ", read.texture, read.binding);
         for (const std::string& name : declaration.writes)
             writes += fmt::format("{}`{}`", writes.empty() ? "" : ", ", name);
-        table += fmt::format("| `{}` | {} | {} |\n", pass->name(), reads.empty() ? "-" : reads,
-                             writes.empty() ? "-" : writes);
+        table +=
+            fmt::format("| `{}` | {} | {} | {} | {} |\n", pass->name(), reads.empty() ? "-" : reads,
+                        writes.empty() ? "-" : writes, value_reads.empty() ? "-" : value_reads,
+                        value_writes.empty() ? "-" : value_writes);
     }
     return table;
 }

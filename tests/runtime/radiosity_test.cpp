@@ -124,7 +124,7 @@ std::pair<FloatImage, FloatImage> reference_gather(const GatherInputs& inputs,
                 const int tap_y = int(std::floor(float(y) + 0.5f + offset_y));
                 if (tap_x < 0 || tap_y < 0 || tap_x >= width || tap_y >= height) continue;
                 const float steps =
-                    std::min(tap.alpha * radius_pixels / render_settings.ao.q, 65536.0f);
+                    std::min(tap.alpha * radius_pixels / render_settings.depth_pyramid.q, 65536.0f);
                 // floor(log2(steps)) as the highest set bit of floor(steps).
                 const int level =
                     steps < 1.0f ? 0 : std::min(int(std::bit_width(unsigned(steps))) - 1, deepest);

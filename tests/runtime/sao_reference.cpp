@@ -181,7 +181,7 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
     for (const auto& tap : taps) {
         const float direction_x = (c * tap.x - s * tap.y) / tap.alpha;
         const float direction_y = (s * tap.x + c * tap.y) / tap.alpha;
-        const TapLookup lookup = look_up_tap(tap, x, y, c, s, radius_pixels, settings.q, inputs);
+        const TapLookup lookup = look_up_tap(tap, x, y, c, s, radius_pixels, inputs.q, inputs);
         if (!lookup.inside) continue;
         const FloatImage& mip = inputs.pyramid[std::size_t(lookup.level)];
         const float centre_x = float(lookup.source_x) + 0.5f;
@@ -321,7 +321,7 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
             float sum = 0.0f;
             for (const auto& tap : taps) {
                 const TapLookup lookup =
-                    look_up_tap(tap, x, y, c, s, radius_pixels, settings.q, inputs);
+                    look_up_tap(tap, x, y, c, s, radius_pixels, inputs.q, inputs);
                 if (!lookup.inside) continue;
                 const FloatImage& mip = inputs.pyramid[std::size_t(lookup.level)];
                 const int texel_x = lookup.texel_x, texel_y = lookup.texel_y;

@@ -41,6 +41,8 @@ struct SaoInputs {
     std::vector<FloatImage> back_faces;
     glm::vec2 ray_scale{1.0f};  // (1/P00, 1/P11) of the guard-banded projection
     float near_plane = 0.05f;   // the camera's (m): the march stops in front of it
+    // The depth pyramid's MIP selection constant (RenderSettings::depth_pyramid.q).
+    float q = 8.0f;
 };
 
 // Ambient visibility per pixel (1 channel, the pyramid's level-0 size): in

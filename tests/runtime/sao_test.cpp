@@ -37,6 +37,7 @@ FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings
     }
     frame.inputs.ray_scale = renderer_ray_scale(scene.default_camera, settings);
     frame.inputs.near_plane = scene.default_camera.near_plane;
+    frame.inputs.q = settings.depth_pyramid.q;
     frame.raw = renderer.read_pass_output("ao-raw");
     frame.blurred = renderer.read_pass_output("ao-blurred");
     return frame;
@@ -113,7 +114,7 @@ TEST_CASE("sao: deep SAO matches the CPU evaluation with other parameters and ta
     settings.ao.radius = 1.2f;
     settings.ao.bias = 0.05f;
     settings.ao.intensity = 2.0f;
-    settings.ao.q = 4.0f;
+    settings.depth_pyramid.q = 4.0f;
     settings.depth_pyramid.max_mip_level = 3;
     for (auto [n, tau] : {std::pair{8, 3}, std::pair{16, 1}, std::pair{32, 7}}) {
         write_ao_header(headers.path(), n, tau);
@@ -269,7 +270,7 @@ TEST_CASE("sao: no NaN or Inf at grazing angles, near the near plane, on sky and
         settings.ao.radius = radius;
         settings.ao.bias = bias;
         settings.ao.intensity = intensity;
-        settings.ao.q = q;
+        settings.depth_pyramid.q = q;
         const FrameReadBack frame = render_and_read(occluded_floor(true), settings, loader);
         INFO("radius " << radius << ", bias " << bias << ", intensity " << intensity << ", q "
                        << q);

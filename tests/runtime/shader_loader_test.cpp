@@ -6,10 +6,12 @@
 #include "deepgi/scene.hpp"
 #include "deepgi/shader_loader.hpp"
 #include "pass.hpp"
+#include "passes/passes.hpp"
 #include "support/runtime_support.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <unistd.h>
 
@@ -107,6 +109,18 @@ TEST_CASE("shader loader: every pass of the pass list builds its programs, and t
         const int built = loader.programs_built() - before;
         INFO("pass " << pass->name() << " built " << built << " programs");
         CHECK(built >= 1);
+        // SAO builds one program per row of its program table, which holds
+        // every estimator of the AoMethod table at every layer count.
+        if (pass->name() == "sao") {
+            const std::vector<SaoProgram> table = sao_program_table();
+            CHECK(built == int(table.size()));
+            CHECK(table.size() == enum_names(AoMethod{}).size() * limits::max_ao_layers);
+            for (const auto& method : enum_names(AoMethod{}))
+                for (int layers = 1; layers <= limits::max_ao_layers; ++layers)
+                    CHECK(std::count_if(table.begin(), table.end(), [&](const SaoProgram& p) {
+                              return p.method == method.value && p.layers == layers;
+                          }) == 1);
+        }
         ++passes;
     }
     CHECK(passes == int(default_pass_list().size()));

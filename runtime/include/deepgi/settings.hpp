@@ -124,8 +124,8 @@ inline constexpr int max_internal_side = 16384;
 inline constexpr int min_shadow_map_size = 16;
 inline constexpr int max_shadow_map_size = 8192;
 inline constexpr float max_guard_band_fraction = 1.0f;
-inline constexpr int max_ao_mip_level = 15;
-inline constexpr float min_ao_q = 1.0f;
+inline constexpr int max_pyramid_mip_level = 15;
+inline constexpr float min_pyramid_q = 1.0f;
 inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
@@ -161,7 +161,6 @@ struct AoSettings {
     float radius = 0.5f;     // world-space gather radius r (m)
     float bias = 0.0f;       // beta (m): see default_ao_bias()
     float intensity = 1.0f;  // exponent applied to the visibility
-    float q = 8.0f;          // screen-space radius (px) at which taps move one MIP level down
     int layers = 2;          // 1: layer 0 only, 2: both deep G-buffer layers
     // The march is the one estimator that meets the accuracy targets against
     // the ray-traced reference on every scene; solid-angle is the fast spiral
@@ -215,10 +214,13 @@ struct BlurSettings {
     float extent = 0.5f;
 };
 
-// The depth pyramid (depth_pyramid.comp): how deep it is built. The gathers
-// read the level count the pass publishes, never this setting.
+// The depth pyramid (depth_pyramid.comp): how deep it is built, and how the
+// gathers that read it (SAO, radiosity) choose a level. The gathers read the
+// level count the pass publishes and its value "depth_pyramid.q", never these
+// settings.
 struct DepthPyramidSettings {
     int max_mip_level = 5;  // deepest level built (fewer when the image is smaller)
+    float q = 8.0f;         // screen-space radius (px) at which taps move one MIP level down
 };
 
 // Mirror reflections traced through both deep G-buffer layers (the paper's
@@ -295,9 +297,12 @@ struct NumericSetting {
     std::string_view name;   // the command-line option without "--", e.g. "ao-radius"
     std::string_view label;  // the panel's label
     std::string_view group;  // the panel section: "frame", "ao", "radiosity" or "blur"
-    std::string_view owner;  // the pass that reads it ("frame": the per-frame constants)
-    std::string_view help;   // the command line's help, without default or range
-    std::string_view unit;   // in words, for help and messages ("metres", "pixels"), or ""
+    // The pass that reads it ("frame": the frame itself, e.g. the guard band
+    // that sizes every pass). Another pass that needs it reads the value the
+    // owner declares (PassValue, runtime/src/pass.hpp), never the row.
+    std::string_view owner;
+    std::string_view help;  // the command line's help, without default or range
+    std::string_view unit;  // in words, for help and messages ("metres", "pixels"), or ""
     bool integer = false;
     float minimum = 0.0f;  // lower limit
     bool minimum_inclusive = true;
@@ -307,6 +312,9 @@ struct NumericSetting {
     float slider_max = 1.0f;
     bool logarithmic = false;
     SettingEffect effect = SettingEffect::none;
+    // The RenderSettings member it is, e.g. "ao.radius" (what its owner's
+    // code reads; tests/runtime/settings_owner_test.cpp looks for it).
+    std::string_view field;
     float (*get)(const RenderSettings&) = nullptr;
     void (*set)(RenderSettings&, float) = nullptr;
     // > 0: the row is a length that accepts `auto` (auto_length in the

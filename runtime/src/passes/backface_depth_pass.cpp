@@ -33,8 +33,19 @@ public:
 
     std::string_view name() const override { return "backface_depth"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{depth_binding, "gbuffer.depth"}}, .writes = {"backface.depth"}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        // How many layers is its readers' to say: SAO's and the reflections'
+        // layer counts, read from the settings where the frame asks whether
+        // the pass runs (before any value is known), so declared here.
+        // Whether reflections are traced depends on which materials are mirrors.
+        PassDeclaration declaration = {.reads = {{depth_binding, "gbuffer.depth"}},
+                                       .writes = {"backface.depth"},
+                                       .value_reads = {"gbuffer.mirror_roughness"}};
+        if (ao_method_reads_back_faces(settings.ao.method))
+            declaration.value_reads.push_back("sao.layers");
+        if (reflections_traced(*scene_, settings))
+            declaration.value_reads.push_back("reflection.layers");
+        return declaration;
     }
 
     bool enabled(const RenderSettings& settings) const override { return layers(settings) > 0; }

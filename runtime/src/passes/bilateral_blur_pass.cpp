@@ -62,7 +62,8 @@ public:
                           {source_bindings[1], "radiosity.irradiance.layer0"},
                           {depth_binding, "depth_pyramid"},
                           {normal_binding, "gbuffer.normal"}},
-                .writes = {"ao.blurred", "radiosity.blurred"}};
+                .writes = {"ao.blurred", "radiosity.blurred"},
+                .value_reads = {"sao.radius"}};
     }
 
     void resize(FrameResources& frame) override {
@@ -77,7 +78,8 @@ public:
     }
 
     void run(FrameResources& frame) override {
-        apply_blur_settings(blur_, *frame.settings);
+        // The extent is a fraction of the AO radius, which is the SAO pass's.
+        apply_blur_settings(blur_, frame.settings->blur, frame.value("sao.radius"));
         const GLuint sources[] = {frame.texture("ao.temporal"),
                                   frame.texture("radiosity.irradiance.layer0")};
         run_bilateral_blur(blur_, sources, frame.texture("depth_pyramid"),
@@ -125,10 +127,10 @@ BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count
     return blur;
 }
 
-void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings) {
+void apply_blur_settings(BilateralBlur& blur, const BlurSettings& settings, float ao_radius) {
     // validate() has checked both factors when the renderer took the settings.
-    blur.parameters = settings.blur;
-    blur.world_extent = settings.blur.extent * settings.ao.radius;
+    blur.parameters = settings;
+    blur.world_extent = settings.extent * ao_radius;
 }
 
 void resize_bilateral_blur(BilateralBlur& blur, int width, int height,

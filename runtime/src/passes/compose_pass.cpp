@@ -17,10 +17,6 @@ constexpr GLuint direct_light_binding = 7;
 constexpr GLuint ao_binding = 11;
 constexpr GLuint radiosity_binding = 14;
 constexpr GLuint reflection_binding = 3;  // mirror pixels' reflected radiance
-// ivec3 uniform: AO, radiosity, environment (0: left out).
-constexpr GLint terms_location = 36;
-// int uniform: 1 while the reflection pass runs.
-constexpr GLint reflections_location = 37;
 
 class ComposePass final : public Pass {
 public:
@@ -37,7 +33,9 @@ public:
                                                  {ao_binding, "ao.blurred"},
                                                  {normal_binding, "gbuffer.normal"},
                                                  {radiosity_binding, "radiosity.blurred"}},
-                                       .writes = {"compose.radiance"}};
+                                       .writes = {"compose.radiance"},
+                                       // Which materials are mirrors (reflections_traced).
+                                       .value_reads = {"gbuffer.mirror_roughness"}};
         // Mirror pixels, when the reflection pass runs.
         if (reflections_traced(*scene_, settings))
             declaration.reads.push_back({reflection_binding, "reflection.filtered"});
@@ -54,11 +52,8 @@ public:
 
     void run(FrameResources& frame) override {
         begin_fullscreen(framebuffer_.get(), width_, height_);
-        const RenderSettings& settings = *frame.settings;
-        glProgramUniform3i(program_.get(), terms_location, settings.ao.enabled ? 1 : 0,
-                           settings.radiosity.enabled ? 1 : 0, settings.environment ? 1 : 0);
-        glProgramUniform1i(program_.get(), reflections_location,
-                           reflections_traced(*scene_, settings) ? 1 : 0);
+        // Which terms it adds is the frame's: FrameConstants' ao_term,
+        // radiosity_term, environment_term and reflection_term.
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("compose.radiance", radiance_.get());

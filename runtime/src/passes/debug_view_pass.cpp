@@ -47,7 +47,9 @@ public:
         // The hit layer of each mirror ray.
         if (reflections_traced(*scene_, settings))
             reads.push_back({reflection_hit_binding, "reflection.hit"});
-        return {.reads = std::move(reads), .writes = {}};
+        // Which materials are mirrors (reflections_traced).
+        return {
+            .reads = std::move(reads), .writes = {}, .value_reads = {"gbuffer.mirror_roughness"}};
     }
     void resize(FrameResources&) override {}
     bool enabled(const RenderSettings& settings) const override {

@@ -39,8 +39,12 @@ public:
 
     std::string_view name() const override { return "depth_pyramid"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{depth_binding, "gbuffer.depth"}}, .writes = {"depth_pyramid"}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        // q is the pyramid's: which level a tap of radius h reads,
+        // floor(log2(h / q)), is how the gathers use it.
+        return {.reads = {{depth_binding, "gbuffer.depth"}},
+                .writes = {"depth_pyramid"},
+                .value_writes = {{"depth_pyramid.q", settings.depth_pyramid.q}}};
     }
 
     void resize(FrameResources& frame) override {

@@ -92,10 +92,12 @@ public:
 
     std::string_view name() const override { return "gbuffer"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        // The G-buffer tells mirrors apart; the reflection pass runs for them.
         return {.reads = {},
                 .writes = {"gbuffer.normal", "gbuffer.albedo", "gbuffer.emissive", "gbuffer.motion",
-                           "gbuffer.depth"}};
+                           "gbuffer.depth"},
+                .value_writes = {{"gbuffer.mirror_roughness", settings.mirror_roughness}}};
     }
 
     // Delay and predict keep a third layer the others do not have, so moving

@@ -33,6 +33,14 @@ Antialias create_antialias(const ShaderLoader& loader);
 void run_antialias(Antialias& antialias, GLuint source, GLuint target_framebuffer, int width,
                    int height, GLuint empty_vertex_array);
 
+// The SAO pass's programs: one per estimator (AO_METHOD, its include of
+// sao.frag) and layer count (AO_LAYERS), every one built when the pass is made.
+struct SaoProgram {
+    AoMethod method = AoMethod::march;
+    int layers = 2;
+};
+std::vector<SaoProgram> sao_program_table();
+
 // Whether the reflection pass runs: reflections on and a mirror material in
 // the scene (roughness <= mirror_roughness, metallic >= 0.5). The passes it
 // needs (back faces) and the compose pass's read follow this.
@@ -65,9 +73,10 @@ struct BilateralBlur {
     float world_extent = 0.0f;
     ParameterBlock<shader_shared::BlurParameters> block;  // the above, as the shader reads them
 };
-// Takes the settings' edge weights and world extent (read every frame, so the
-// window's sliders act without a rebuild); the settings are validated ones.
-void apply_blur_settings(BilateralBlur& blur, const RenderSettings& settings);
+// Takes the settings' edge weights and world extent, the latter a fraction of
+// the AO radius (read every frame, so the window's sliders act without a
+// rebuild); the settings are validated ones.
+void apply_blur_settings(BilateralBlur& blur, const BlurSettings& settings, float ao_radius);
 // Builds the program for `source_count` (1 or 2) sources; throws InputError
 // for bad parameters.
 BilateralBlur create_bilateral_blur(const ShaderLoader& loader, int source_count,

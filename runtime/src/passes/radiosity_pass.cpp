@@ -51,7 +51,9 @@ public:
                           {normal_binding, "gbuffer.normal"},
                           {motion_binding, "gbuffer.motion"}},
                 .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",
-                           "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"}};
+                           "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"},
+                // The pyramid's MIP selection, as SAO uses it.
+                .value_reads = {"depth_pyramid.q"}};
     }
 
     SettingsChange settings_change(const RenderSettings& before,
@@ -100,7 +102,7 @@ public:
         // The prepare pass builds as many levels as the depth pyramid.
         parameters_.bind({.radius = settings.radius,
                           .tap_clamp = settings.tap_clamp,
-                          .q = frame.settings->ao.q,
+                          .q = frame.value("depth_pyramid.q"),
                           .max_mip = frame.integer("depth_pyramid.max_level"),
                           .layers = settings.layers,
                           .method = static_cast<int>(settings.method),

@@ -56,7 +56,7 @@ public:
         return reflections_traced(*scene_, settings);
     }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
+    PassDeclaration declaration(const RenderSettings& settings) const override {
         return {.reads = {{unit_normal, "gbuffer.normal"},
                           {unit_albedo, "gbuffer.albedo"},
                           {unit_emissive, "gbuffer.emissive"},
@@ -65,7 +65,10 @@ public:
                           {unit_backface, "backface.depth"},
                           {unit_irradiance_layer0, "radiosity.irradiance.layer0"},
                           {unit_irradiance_layer1, "radiosity.irradiance.layer1"}},
-                .writes = {"reflection.radiance", "reflection.hit"}};
+                .writes = {"reflection.radiance", "reflection.hit"},
+                // The solids behind open meshes are as thick as SAO's.
+                .value_reads = {"sao.thickness", "gbuffer.mirror_roughness"},
+                .value_writes = {{"reflection.layers", float(settings.reflection.layers)}}};
     }
 
     void resize(FrameResources& frame) override {
@@ -106,15 +109,15 @@ public:
         block_.bind({.distance = reflection_distance(settings, bounding_radius),
                      .steps = settings.reflection.steps,
                      .layers = settings.reflection.layers,
-                     .thickness = settings.ao.thickness,
+                     .thickness = frame.value("sao.thickness"),
                      .max_level = levels_ - 1,
-                     .radiosity = settings.radiosity.enabled ? 1 : 0,
-                     .environment = settings.environment ? 1 : 0,
                      .skip_steps = skip_steps,
+                     .unused0 = 0,
+                     .unused1 = 0,
                      .edge_fade_pixels = std::max(4.0f, 0.5f * float(guard_)),
                      .facing_fade_start = 0.2f,
                      .facing_fade_end = 0.5f,
-                     .unused = 0.0f});
+                     .unused2 = 0.0f});
 
         // The nearest-depth pyramid: level 0 from layer 0, then each level
         // the minimum of the finer one (read as an image, written as a target).

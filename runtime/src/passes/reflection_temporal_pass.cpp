@@ -38,7 +38,9 @@ public:
                           {motion_binding, "gbuffer.motion"},
                           {depth_binding, "depth_pyramid"},
                           {raw_binding, "reflection.radiance"}},
-                .writes = {"reflection.filtered"}};
+                .writes = {"reflection.filtered"},
+                // Whether it runs: reflections_traced() reads the mirror threshold.
+                .value_reads = {"gbuffer.mirror_roughness"}};
     }
 
     void resize(FrameResources& frame) override {
