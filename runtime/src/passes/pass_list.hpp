@@ -17,6 +17,7 @@ DEEPGI_PASS(radiosity)
 DEEPGI_PASS(blur)        // AO and radiosity E share one bilateral blur (bilateral_blur_pass.cpp)
 DEEPGI_PASS(reflection)  // scenes with mirrors only
 DEEPGI_PASS(compose)
-DEEPGI_PASS(tonemap)     // final image only
-DEEPGI_PASS(debug_view)  // any other view
-DEEPGI_PASS(antialias)   // final image only, after the tonemap
+DEEPGI_PASS(frame_statistics)  // exposure, depth ranges
+DEEPGI_PASS(tonemap)           // final image only
+DEEPGI_PASS(debug_view)        // any other view
+DEEPGI_PASS(antialias)         // final image only, after the tonemap
