@@ -181,8 +181,12 @@ void numeric_sliders(std::string_view group, RenderSettings& settings,
             bool follows_scene = setting.get(settings) == auto_length;
             if (ImGui::Checkbox("auto", &follows_scene))
                 setting.set(settings, follows_scene ? auto_length : setting.get(in_use));
-            if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
+            if (ImGui::IsItemHovered()) {
+                if (is_scene_length(setting))
+                    ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
+                else
+                    ImGui::SetTooltip("measured each frame (docs/deepgi.md, \"Exposure\")");
+            }
             ImGui::SameLine();
         }
         if (accepts_auto(setting) && setting.get(settings) == auto_length) {
@@ -372,7 +376,19 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         enum_combo("generator (G)", wanted.generator);
         enum_combo("view (V)", wanted.view);
         enum_combo("timing", wanted.timing);
-        numeric_sliders("frame", wanted, state.renderer->settings_in_use());
+        // The exposure in use is measured, not resolved: the panel shows it
+        // (greyed under auto) and unticking auto keeps it.
+        RenderSettings in_use = state.renderer->settings_in_use();
+        in_use.exposure = state.keys.exposure_in_use;
+        numeric_sliders("frame", wanted, in_use);
+        ImGui::Text("exposure in use %.4g (log-average luminance %.4g)", state.keys.exposure_in_use,
+                    state.renderer->frame_statistics().log_average_luminance);
+        if (wanted.view == DebugView::depth_layer0 || wanted.view == DebugView::depth_layer1) {
+            const int layer = wanted.view == DebugView::depth_layer0 ? 0 : 1;
+            const DepthRange range = state.renderer->depth_ranges()[std::size_t(layer)];
+            ImGui::Text("depth view: layer %d, %.4g (white) to %.4g (dark grey)", layer,
+                        range.near_depth, range.far_depth);
+        }
     }
     if (ImGui::CollapsingHeader("ambient occlusion", ImGuiTreeNodeFlags_DefaultOpen)) {
         enum_combo("method (M)", wanted.ao.method);
@@ -551,6 +567,9 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
                 state.light = state.renderer->key_light();
             }
             state.renderer->render(state.fly.camera);
+            // 32 bytes read after the frame (Renderer::frame_statistics), for
+            // the panel and the exposure keys.
+            state.keys.exposure_in_use = state.renderer->exposure_in_use();
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();
