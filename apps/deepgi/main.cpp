@@ -36,7 +36,7 @@ using deepgi_app::run_reporting_errors;
 
 namespace {
 
-constexpr bool kAutoExposureByDefault = false;
+constexpr bool kAutoExposureByDefault = true;
 
 struct Options {
     bool headless = false;
