@@ -4,7 +4,9 @@
 # + one bounce of deep radiosity (rho_prop 0); + multiple bounces
 # (rho_prop 1). Every image gets the same frames, so the temporal filter has
 # settled the same way in each. Then the first frame's blurred AO of each
-# estimator. Run after scripts/build.sh:
+# estimator. The exposure stays at 1 (the command line's default is auto,
+# which would expose each term on its own and hide what it adds). Run after
+# scripts/build.sh:
 #   scripts/render_figures.sh [SIZE] [FRAMES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +20,7 @@ render() {
     shift
     # deepgi writes the PNG atomically: a failed run leaves the old figure.
     "$deepgi" --headless --scene cornell --size "$size" --frames "$frames" \
-        --output "$out/cornell-$name.png" "$@"
+        --exposure 1 --output "$out/cornell-$name.png" "$@"
     echo "wrote $out/cornell-$name.png"
 }
 render direct --no-ao --no-radiosity --no-environment

@@ -20,6 +20,9 @@ layout(binding = 21) uniform sampler2DArray prepared_radiance;
 layout(binding = 14) uniform sampler2D radiosity_blurred;
 layout(binding = 17) uniform sampler2D radiosity_layer0;
 layout(binding = 18) uniform sampler2D radiosity_layer1;
+// frame_statistics.comp's result: the exposure in use (texel 0, x) and each
+// layer's near and far depth (texel 1).
+layout(binding = 9) uniform sampler2D frame_statistics;
 
 // The reflection pass's hit texture, bound only while that pass runs
 // (debug_view_pass.cpp declares unit 5 for it).
@@ -40,6 +43,7 @@ vec3 reflection_hit_colour(ivec2 pixel) {
 }
 
 vec3 view_colour(ivec2 pixel, int view) {
+  float exposure = texelFetch(frame_statistics, ivec2(0, 0), 0).x;
   int layer = (view == DEEPGI_VIEW_NORMAL_LAYER1 || view == DEEPGI_VIEW_ALBEDO_LAYER1 ||
                view == DEEPGI_VIEW_DEPTH_LAYER1 || view == DEEPGI_VIEW_DIRECT_LAYER1 ||
                view == DEEPGI_VIEW_RADIOSITY_LAYER1) ? 1 : 0;
@@ -53,30 +57,37 @@ vec3 view_colour(ivec2 pixel, int view) {
   if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(clamp(texelFetch(ao_blurred, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(clamp(texelFetch(ao_temporal, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_RADIOSITY_PREPARED)
-    return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * frame.exposure);
+    return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * exposure);
   // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER0)
-    return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (frame.exposure * inv_pi));
+    return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER1)
-    return filmic_tonemap(texelFetch(radiosity_layer1, pixel, 0).rgb * (frame.exposure * inv_pi));
+    return filmic_tonemap(texelFetch(radiosity_layer1, pixel, 0).rgb * (exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_BLURRED)
-    return filmic_tonemap(texelFetch(radiosity_blurred, pixel, 0).rgb * (frame.exposure * inv_pi));
+    return filmic_tonemap(texelFetch(radiosity_blurred, pixel, 0).rgb * (exposure * inv_pi));
   if (view == DEEPGI_VIEW_RADIOSITY_CONFIDENCE) return vec3(texelFetch(radiosity_layer0, pixel, 0).a);
   if (view == DEEPGI_VIEW_NORMAL_LAYER0 || view == DEEPGI_VIEW_NORMAL_LAYER1)
     return decode_normal(texelFetch(gbuffer_normal, texel, 0).xy) * 0.5 + 0.5;
   if (view == DEEPGI_VIEW_ALBEDO_LAYER0 || view == DEEPGI_VIEW_ALBEDO_LAYER1)
     return srgb_decode(texelFetch(gbuffer_albedo, texel, 0).rgb);
   if (view == DEEPGI_VIEW_EMISSIVE)
-    return filmic_tonemap(texelFetch(gbuffer_emissive, texel, 0).rgb * frame.exposure);
+    return filmic_tonemap(texelFetch(gbuffer_emissive, texel, 0).rgb * exposure);
   if (view == DEEPGI_VIEW_MOTION) {
     vec2 motion = texelFetch(gbuffer_motion, texel, 0).xy;
     return vec3(clamp(0.5 + motion / 32.0, 0.0, 1.0), 0.5);
   }
   if (view == DEEPGI_VIEW_DEPTH_LAYER0 || view == DEEPGI_VIEW_DEPTH_LAYER1) {
+    // Scaled by this layer's own near and far depth (frame_statistics), so
+    // a layer that spans 0.4 m uses the whole grey ramp as one that spans
+    // 40 m does: near white, far 0.1 (black stays "nothing"). The grey is
+    // linear in depth on the display (decoded here, encoded in main).
     float depth = frame.camera_ray_scale.z / stored_depth;
-    return vec3(clamp(1.0 - depth / frame.depth_view_range, 0.0, 1.0));
+    vec4 ranges = texelFetch(frame_statistics, ivec2(1, 0), 0);
+    vec2 range = layer == 0 ? ranges.xy : ranges.zw;
+    float t = clamp((depth - range.x) / max(range.y - range.x, 1e-6 * range.y), 0.0, 1.0);
+    return srgb_decode(vec3(1.0 - 0.9 * t));
   }
-  return filmic_tonemap(texelFetch(direct_light, texel, 0).rgb * frame.exposure);
+  return filmic_tonemap(texelFetch(direct_light, texel, 0).rgb * exposure);
 }
 
 void main() {

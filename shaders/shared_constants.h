@@ -57,9 +57,9 @@ struct FrameConstants {
   vec4 internal_size;         // (w, h, 1/w, 1/h) of the guard-banded buffers
 
   float min_separation;        // m, layer 1 behind layer 0
-  float exposure;              // multiplier before the tonemap
+  float exposure;              // the setting; -1: auto (frame_statistics.comp measures it)
   float shadow_normal_offset;  // m along the normal before the shadow lookup
-  float depth_view_range;      // m, the depth debug view's white-to-black range
+  float depth_view_range;      // m, the scene diagonal (unread: depth views use frame_statistics)
 
   int guard_band;       // px on every side
   int viewport_width;   // px

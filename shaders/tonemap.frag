@@ -7,10 +7,13 @@
 
 // Bindings are this shader's own; tonemap_pass.cpp binds the same numbers.
 layout(binding = 8) uniform sampler2D composed_radiance;
+// frame_statistics.comp's result: texel 0's x is the exposure in use.
+layout(binding = 9) uniform sampler2D frame_statistics;
 layout(location = 0) out vec4 out_colour;
 
 void main() {
   ivec2 source = ivec2(gl_FragCoord.xy) + ivec2(frame.guard_band);
   vec3 radiance = texelFetch(composed_radiance, source, 0).rgb;
-  out_colour = vec4(srgb_encode(filmic_tonemap(radiance * frame.exposure)), 1.0);
+  float exposure = texelFetch(frame_statistics, ivec2(0, 0), 0).x;
+  out_colour = vec4(srgb_encode(filmic_tonemap(radiance * exposure)), 1.0);
 }

@@ -36,6 +36,8 @@ using deepgi_app::run_reporting_errors;
 
 namespace {
 
+constexpr bool kAutoExposureByDefault = true;
+
 struct Options {
     bool headless = false;
     bool hidden_window = false;
@@ -69,6 +71,13 @@ struct Options {
     std::string screenshot_directory = ".";  // window: where F12 writes
 };
 
+// Whether an option not given means `auto` on this command line: every
+// length (it follows the scene), and the exposure (docs/deepgi.md,
+// "Exposure", says why the command line and the library differ).
+bool auto_unless_given(const deepgi::NumericSetting& row) {
+    return deepgi::is_scene_length(row) || (row.auto_measured && kAutoExposureByDefault);
+}
+
 void check_output_path(const fs::path& output) {
     if (output == "-") return;  // the PNG goes to standard output
     std::string extension = output.extension().string();
@@ -99,7 +108,7 @@ deepgi::RenderSettings settings_from(const Options& options) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         if (!options.numeric_given[i]) {
             // Lengths follow the scene unless given (docs/deepgi.md, "Scene scale").
-            if (deepgi::accepts_auto(rows[i])) rows[i].set(settings, deepgi::auto_length);
+            if (auto_unless_given(rows[i])) rows[i].set(settings, deepgi::auto_length);
             continue;
         }
         // Checked as typed, before the float conversion could round 2.5 to
@@ -190,6 +199,16 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
         double total = 0.0;
         for (const auto& timing : renderer.last_timings()) total += timing.milliseconds;
         fmt::print("{:<14} {:8.3f} ms\n", "total", total);
+        // What the frame_statistics pass measured (docs/deepgi.md, "Exposure").
+        const deepgi::FrameStatistics& statistics = renderer.frame_statistics();
+        fmt::print("exposure in use {:.4g} ({}; log-average luminance {:.4g})\n",
+                   statistics.exposure, settings.exposure == deepgi::auto_length ? "auto" : "set",
+                   statistics.log_average_luminance);
+        for (int layer = 0; layer < 2; ++layer) {
+            const deepgi::DepthRange& range = statistics.depth_ranges[std::size_t(layer)];
+            fmt::print("depth range of layer {}: {:.4g} to {:.4g}\n", layer, range.near_depth,
+                       range.far_depth);
+        }
     }
     return 0;
 }
@@ -303,16 +322,17 @@ int main(int argc, char** argv) {
         options.numeric_given.assign(rows.size(), false);
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const deepgi::NumericSetting& row = rows[i];
-            options.numeric[i] = deepgi::accepts_auto(row) ? std::string("auto")
-                                                           : fmt::format("{}", row.get(defaults));
+            options.numeric[i] =
+                auto_unless_given(row) ? std::string("auto") : fmt::format("{}", row.get(defaults));
             app.add_option(fmt::format("--{}", row.name), options.numeric[i],
                            fmt::format("{} ({})", row.help, deepgi::describe_limits(row)))
                 ->type_name(row.integer                 ? "INT"
                             : deepgi::accepts_auto(row) ? "FLOAT|auto"
                                                         : "FLOAT")
-                ->default_str(deepgi::accepts_auto(row)
-                                  ? std::string("auto, from the scene's size")
-                                  : spiral_apps::with_unit(row.get(defaults), row.unit))
+                ->default_str(
+                    deepgi::is_scene_length(row) ? std::string("auto, from the scene's size")
+                    : auto_unless_given(row)     ? std::string("auto, from the frame's luminance")
+                                             : spiral_apps::with_unit(row.get(defaults), row.unit))
                 ->group(row.group == "frame"        ? "Frame"
                         : row.group == "ao"         ? "Deep SAO"
                         : row.group == "radiosity"  ? "Deep radiosity"

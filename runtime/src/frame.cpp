@@ -83,6 +83,8 @@ struct RendererState {
     std::optional<Camera> last_camera;   // converts dumped depth to metres
     std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
     std::uint32_t temporal_frame = 0;    // frames since history was invalidated (wraps at 2^32)
+    // The last frame's statistics, read back on the first request after it.
+    mutable std::optional<FrameStatistics> statistics;
 
     RendererState(const Scene& source, const RenderSettings& render_settings,
                   const ShaderLoader& shader_loader)
@@ -255,6 +257,7 @@ void render_frame(RendererState& state, const Camera& camera, const Camera& next
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     frame.end_frame();
     state.last_camera = camera;
+    state.statistics.reset();
     ++state.temporal_frame;
 }
 
@@ -414,6 +417,35 @@ void Renderer::set_key_light(const KeyLight& light) {
     if (!(state.scene.key_light == light)) ++state.frame.lighting_version;
     state.scene.key_light = light;
     state.frame.shadow = shadow_projection(state.scene, state.settings.shadow_map_size);
+}
+
+const FrameStatistics& Renderer::frame_statistics() const {
+    RendererState& state = *state_;
+    if (state.statistics) return *state.statistics;
+    FrameStatistics statistics;
+    statistics.exposure = state.settings.exposure == auto_length ? 1.0f : state.settings.exposure;
+    if (state.last_camera) {
+        // 2x1 RGBA32F (frame_statistics.comp): exposure, log-average, target,
+        // pixels; near and far of layer 0 and of layer 1.
+        std::array<float, 8> texels{};
+        glGetTextureSubImage(state.frame.texture("frame_statistics"), 0, 0, 0, 0, 2, 1, 1, GL_RGBA,
+                             GL_FLOAT, GLsizei(sizeof(texels)), texels.data());
+        statistics.exposure = texels[0];
+        statistics.log_average_luminance = texels[1];
+        statistics.auto_exposure_target = texels[2];
+        statistics.depth_ranges = {DepthRange{texels[4], texels[5]},
+                                   DepthRange{texels[6], texels[7]}};
+    }
+    state.statistics = statistics;
+    return *state.statistics;
+}
+
+float Renderer::exposure_in_use() const {
+    return frame_statistics().exposure;
+}
+
+std::array<DepthRange, 2> Renderer::depth_ranges() const {
+    return frame_statistics().depth_ranges;
 }
 
 const KeyLight& Renderer::key_light() const {

@@ -201,15 +201,17 @@ const std::array<NumericSetting, 27> numeric_table = {{
     {.name = "exposure",
      .label = "exposure",
      .group = "frame",
-     .owner = "tonemap",
-     .help = "Exposure multiplier before the tonemap",
+     .owner = "frame_statistics",  // resolves auto; tonemap and debug_view read its result
+     .help = "Exposure multiplier before the tonemap; auto: 0.0923 / the lit image's "
+             "log-average luminance, clamped to [1/16, 16], smoothed over frames",
      .minimum = 0.0f,
      .minimum_inclusive = false,
      .maximum = unlimited,
      .slider_min = 0.05f,
-     .slider_max = 8.0f,
+     .slider_max = 16.0f,
      .logarithmic = true,
-     DEEPGI_FLOAT_FIELD(exposure)},
+     DEEPGI_FLOAT_FIELD(exposure),
+     .auto_measured = true},
     {.name = "guard-band",
      .label = "guard band (* height)",
      .group = "frame",
@@ -539,6 +541,7 @@ std::string describe_limits(const NumericSetting& setting) {
     if (accepts_auto(setting)) {
         NumericSetting number = setting;
         number.scene_fraction = 0.0f;
+        number.auto_measured = false;
         return describe_limits(number) + ", or auto";
     }
     if (setting.integer) {
@@ -593,7 +596,7 @@ float parse_setting_value(const NumericSetting& setting, std::string_view text) 
 
 RenderSettings resolve_auto_lengths(RenderSettings settings, float scene_radius) {
     for (const NumericSetting& setting : numeric_settings()) {
-        if (accepts_auto(setting) && setting.get(settings) == auto_length)
+        if (is_scene_length(setting) && setting.get(settings) == auto_length)
             setting.set(settings, setting.scene_fraction * scene_radius);
     }
     return settings;
@@ -603,7 +606,7 @@ std::vector<std::string> describe_auto_lengths(const RenderSettings& given,
                                                const RenderSettings& in_use, float scene_radius) {
     std::vector<std::string> lines;
     for (const NumericSetting& setting : numeric_settings()) {
-        if (!accepts_auto(setting) || setting.get(given) != auto_length) continue;
+        if (!is_scene_length(setting) || setting.get(given) != auto_length) continue;
         lines.push_back(fmt::format("{} auto = {:.4g} scene units ({} x bounding radius {:.4g})",
                                     setting.name, setting.get(in_use), setting.scene_fraction,
                                     scene_radius));

@@ -157,13 +157,18 @@ TEST_CASE("cli: --print-timings ends with the total of the passes it lists", "[r
     std::ifstream stream(timings);
     std::string line;
     std::vector<std::pair<std::string, double>> rows;
+    int statistics_lines = 0;
     while (std::getline(stream, line)) {
+        // After the total: what the frame_statistics pass measured.
+        statistics_lines +=
+            line.rfind("exposure in use ", 0) == 0 || line.rfind("depth range of layer ", 0) == 0;
         char name[64] = {};
         double ms = 0.0;
         if (std::sscanf(line.c_str(), "%63s %lf ms", name, &ms) == 2) rows.emplace_back(name, ms);
     }
     REQUIRE(rows.size() >= 3);
     REQUIRE(rows.back().first == "total");
+    CHECK(statistics_lines == 3);
     double sum = 0.0;
     for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
         REQUIRE(rows[i].first != "total");

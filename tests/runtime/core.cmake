@@ -2,6 +2,8 @@
 add_executable(deepgi_runtime_tests
   ${CMAKE_CURRENT_LIST_DIR}/gbuffer_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/outputs_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/camera_path_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_statistics_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shader_loader_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/help_test.cpp)

@@ -168,11 +168,11 @@ TEST_CASE(
     HeadlessContext context;
     // Regression bounds, not targets: the share of layer-1 pixels disagreeing
     // with peel, measured as in docs/deepgi.md (previous / reproject: cornell
-    // 3.09% / 0.28%, atrium 10.41% / 3.44%, warehouse 33.26% / 21.93%), about
-    // 10% above each (and 0.1 point at least), so a generator that gets worse
+    // 3.06% / 1.24% along the path inside the room, atrium 10.41% / 3.44%, warehouse 33.26%
+    // / 21.93%), about 10% above each (and 0.1 point at least), so a generator that gets worse
     // fails even while it stays better than the other.
     const std::map<std::string, std::pair<double, double>> regression_bound_percent = {
-        {"cornell", {3.4, 0.38}}, {"atrium", {11.5, 3.8}}, {"warehouse", {36.6, 24.2}}};
+        {"cornell", {3.4, 1.37}}, {"atrium", {11.5, 3.8}}, {"warehouse", {36.6, 24.2}}};
     for (const std::string scene_name : {"cornell", "atrium", "warehouse"}) {
         const Scene scene = make_builtin_scene(scene_name);
         Renderer peel(scene, small_settings(Generator::peel),

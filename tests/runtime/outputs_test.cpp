@@ -191,16 +191,21 @@ TEST_CASE("outputs: the final image is the filmic curve and sRGB encoding of the
           "[runtime][outputs]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
-    for (float exposure : {1.0f, 0.3f, 4.0f}) {
+    // auto_length: the exposure the frame_statistics pass measured, as
+    // Renderer::exposure_in_use() reports it (frame_statistics_test.cpp
+    // checks that value against the log-average).
+    for (const float setting : {1.0f, 0.3f, 4.0f, auto_length}) {
         RenderSettings settings;
         settings.width = 96;
         settings.height = 54;
         settings.shadow_map_size = 256;
-        settings.exposure = exposure;
+        settings.exposure = setting;
         // The tonemap alone: the anti-aliasing after it has tests of its own.
         settings.antialias = 0;
         Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
         renderer.render(scene.default_camera);
+        const double exposure = renderer.exposure_in_use();
+        if (setting != auto_length) REQUIRE(exposure == setting);
         const FloatImage radiance = renderer.read_pass_output("compose-radiance");
         const FloatImage colour = renderer.read_pass_output("tonemap-colour");
         const std::vector<std::uint8_t> bytes = renderer.read_output_rgba8();
@@ -224,7 +229,8 @@ TEST_CASE("outputs: the final image is the filmic curve and sRGB encoding of the
                 }
             }
         }
-        INFO("exposure " << exposure << ": largest difference " << worst << ", " << worst_code
+        INFO("exposure " << exposure << (setting == auto_length ? " (auto)" : "")
+                         << ": largest difference " << worst << ", " << worst_code
                          << " codes; expected values span [" << lowest << ", " << highest << "]");
         // The display target holds 8 bits per channel: half a code of rounding,
         // and a code for float evaluation order.

@@ -61,7 +61,7 @@ RenderSettings auto_settings() {
     settings.height = kHeight;
     settings.shadow_map_size = 1024;
     for (const NumericSetting& row : numeric_settings())
-        if (accepts_auto(row)) row.set(settings, auto_length);
+        if (is_scene_length(row)) row.set(settings, auto_length);
     return settings;
 }
 
@@ -162,7 +162,12 @@ TEST_CASE("scene scale: auto lengths are the rows' fractions of the bounding rad
     }
     CHECK_THROWS_AS(parse_setting_value(*find_numeric_setting("ao-radius"), "-1"), InputError);
     CHECK(parse_setting_value(*find_numeric_setting("ao-radius"), "auto") == auto_length);
-    CHECK_THROWS_AS(parse_setting_value(*find_numeric_setting("exposure"), "auto"), InputError);
+    // The exposure's auto is measured each frame, not resolved from the scene.
+    CHECK(parse_setting_value(*find_numeric_setting("exposure"), "auto") == auto_length);
+    RenderSettings automatic;
+    automatic.exposure = auto_length;
+    CHECK(resolve_auto_lengths(automatic, radius).exposure == auto_length);
+    CHECK_THROWS_AS(parse_setting_value(*find_numeric_setting("guard-band"), "auto"), InputError);
 }
 
 }  // namespace

@@ -54,10 +54,11 @@ double share_above(const deepgi::FloatImage& a, const deepgi::FloatImage& b, flo
 // and dir/name/ (the pass outputs).
 void render_headless(const fs::path& dir, const std::string& name, const std::string& size,
                      const std::string& pose, int frames) {
-    REQUIRE(run(fmt::format("'{}' --headless --scene cornell --size {} --camera '{}' --frames {} "
-                            "--output '{}/{}.png' --dump '{}/{}' > /dev/null",
-                            DEEPGI_EXECUTABLE, size, pose, frames, dir.string(), name, dir.string(),
-                            name)) == 0);
+    REQUIRE(run(fmt::format(
+                "'{}' --headless --scene cornell --exposure 1 --size {} --camera '{}' --frames {} "
+                "--output '{}/{}.png' --dump '{}/{}' > /dev/null",
+                DEEPGI_EXECUTABLE, size, pose, frames, dir.string(), name, dir.string(), name)) ==
+            0);
 }
 
 }  // namespace
@@ -84,9 +85,12 @@ TEST_CASE("window: mouse-look, held keys and a resize give the camera a headless
         "frame 10 quit\n",
         dir.string());
     const int status =
-        run(fmt::format("'{}' -a '{}' --scene cornell --size 160x90 --script '{}' > '{}/out.txt' "
-                        "2>&1",
-                        DEEPGI_XVFB_RUN, DEEPGI_EXECUTABLE, script.string(), dir.string()));
+        // A fixed exposure on both sides: auto exposure smooths over the
+        // poses the window passed through, as the temporal filters do.
+        run(fmt::format(
+            "'{}' -a '{}' --scene cornell --exposure 1 --size 160x90 --script '{}' > '{}/out.txt' "
+            "2>&1",
+            DEEPGI_XVFB_RUN, DEEPGI_EXECUTABLE, script.string(), dir.string()));
     INFO(spiral::test::read_file(dir / "out.txt"));
     REQUIRE(status == 0);
 

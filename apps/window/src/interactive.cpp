@@ -396,6 +396,9 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
             state.renderer->render(shown, state.fly.camera);
             state.rendered_camera = shown;
             state.delayed_camera = state.fly.camera;
+            // 32 bytes read after the frame (Renderer::frame_statistics), for
+            // the panel and the exposure keys.
+            state.keys.exposure_in_use = state.renderer->exposure_in_use();
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();

@@ -26,8 +26,8 @@ constexpr std::array<KeyBinding, 17> key_table = {{
     {"]", KeyAction::ao_radius_up, "AO radius * 1.25"},
     {",", KeyAction::radiosity_radius_down, "radiosity radius / 1.25"},
     {".", KeyAction::radiosity_radius_up, "radiosity radius * 1.25"},
-    {"-", KeyAction::exposure_down, "exposure / 1.25"},
-    {"=", KeyAction::exposure_up, "exposure * 1.25"},
+    {"-", KeyAction::exposure_down, "exposure / 1.25 (from auto: the value in use)"},
+    {"=", KeyAction::exposure_up, "exposure * 1.25 (from auto: the value in use)"},
     {"L", KeyAction::toggle_layers, "AO and radiosity layers 2 <-> 1"},
     {"T", KeyAction::toggle_temporal, "radiosity temporal filter off <-> on"},
     {"R", KeyAction::reset_camera, "reset the camera"},
@@ -154,10 +154,13 @@ bool apply_key_action(KeyAction action, RenderSettings& settings, KeyState& stat
             scale_setting(settings, "radiosity-radius", 1.25f);
             return true;
         case KeyAction::exposure_down:
-            scale_setting(settings, "exposure", 1.0f / 1.25f);
-            return true;
         case KeyAction::exposure_up:
-            scale_setting(settings, "exposure", 1.25f);
+            // Scaling the auto marker would mean nothing: the key takes the
+            // measured value over as a manual one and steps from there.
+            if (settings.exposure == auto_length && state.exposure_in_use > 0.0f)
+                settings.exposure = state.exposure_in_use;
+            scale_setting(settings, "exposure",
+                          action == KeyAction::exposure_up ? 1.25f : 1.0f / 1.25f);
             return true;
         case KeyAction::toggle_layers: {
             const int layers = settings.ao.layers == 1 ? limits::max_ao_layers : 1;
@@ -233,9 +236,9 @@ void apply_set_command(const std::string& name, const std::vector<std::string>& 
                                      expected_values(name), values.size()));
     }
     if (const NumericSetting* setting = find_numeric_setting(name)) {
-        // `auto` for a length; a number is checked as typed, so -1 is never
-        // taken for auto_length.
-        const float value = setting->scene_fraction > 0.0f && values[0] == "auto"
+        // `auto` for a length or the exposure; a number is checked as
+        // typed, so -1 is never taken for auto_length.
+        const float value = accepts_auto(*setting) && values[0] == "auto"
                                 ? auto_length
                                 : parse_float(name, values[0]);
         if (setting->integer && value != std::round(value))

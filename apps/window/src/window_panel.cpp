@@ -59,8 +59,12 @@ void numeric_sliders(std::string_view group, RenderSettings& settings,
             bool follows_scene = setting.get(settings) == auto_length;
             if (ImGui::Checkbox("auto", &follows_scene))
                 setting.set(settings, follows_scene ? auto_length : setting.get(in_use));
-            if (ImGui::IsItemHovered())
-                ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
+            if (ImGui::IsItemHovered()) {
+                if (is_scene_length(setting))
+                    ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
+                else
+                    ImGui::SetTooltip("measured each frame (docs/deepgi.md, \"Exposure\")");
+            }
             ImGui::SameLine();
         }
         if (accepts_auto(setting) && setting.get(settings) == auto_length) {
@@ -226,7 +230,19 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         enum_combo("generator (G)", wanted.generator);
         enum_combo("view (V)", wanted.view);
         enum_combo("timing", wanted.timing);
-        numeric_sliders("frame", wanted, in_use);
+        // The exposure in use is measured, not resolved: the panel shows it
+        // (greyed under auto) and unticking auto keeps it.
+        RenderSettings frame_in_use = in_use;
+        frame_in_use.exposure = state.keys.exposure_in_use;
+        numeric_sliders("frame", wanted, frame_in_use);
+        ImGui::Text("exposure in use %.4g (log-average luminance %.4g)", state.keys.exposure_in_use,
+                    state.renderer->frame_statistics().log_average_luminance);
+        if (wanted.view == DebugView::depth_layer0 || wanted.view == DebugView::depth_layer1) {
+            const int layer = wanted.view == DebugView::depth_layer0 ? 0 : 1;
+            const DepthRange range = state.renderer->depth_ranges()[std::size_t(layer)];
+            ImGui::Text("depth view: layer %d, %.4g (white) to %.4g (dark grey)", layer,
+                        range.near_depth, range.far_depth);
+        }
     }
     if (section(state, "ambient occlusion", "ao")) {
         enum_combo("method (M)", wanted.ao.method);

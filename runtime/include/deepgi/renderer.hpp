@@ -6,6 +6,7 @@
 #include "deepgi/settings.hpp"
 #include "deepgi/shader_loader.hpp"
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,6 +30,23 @@ FrameLayout frame_layout(const RenderSettings& settings);
 // Projection for the guard-banded buffers: reversed Z, infinite far plane, so
 // linear camera depth is near_plane / stored depth.
 glm::mat4 guard_band_projection(const Camera& camera, const RenderSettings& settings);
+
+// Near and far linear camera depth (metres, scene units) of one G-buffer
+// layer's valid texels over the viewport; both 0 when the layer is empty.
+struct DepthRange {
+    float near_depth = 0.0f;
+    float far_depth = 0.0f;
+};
+
+// What the frame_statistics pass measured on the last frame.
+struct FrameStatistics {
+    float exposure = 1.0f;  // the multiplier the tonemap used
+    // exp(mean(log(1e-4 + Y))) of the lit image before the tonemap, Y its
+    // Rec. 709 luminance, over the viewport.
+    float log_average_luminance = 0.0f;
+    float auto_exposure_target = 0.0f;  // key / log-average, clamped, before smoothing
+    std::array<DepthRange, 2> depth_ranges{};
+};
 
 struct RendererState;
 class Pass;
@@ -90,6 +108,18 @@ public:
     FrameLayout layout() const;
 
     const std::vector<PassTiming>& last_timings() const;
+
+    // The last frame's statistics (frame_statistics pass). The frame itself
+    // never reads them back (the tonemap reads the exposure on the GPU); the
+    // first call after a frame reads 32 bytes, which waits for that frame's
+    // statistics pass. Before any frame: the manual exposure (1 for auto)
+    // and empty ranges.
+    const FrameStatistics& frame_statistics() const;
+    // The exposure the last frame was tonemapped with: the setting, or with
+    // `auto` the measured and smoothed value.
+    float exposure_in_use() const;
+    // Each layer's depth range, which the depth debug views are scaled by.
+    std::array<DepthRange, 2> depth_ranges() const;
 
     // Whether the last frame found the previous frame's history, and why
     // history was dropped each time it was ("new scene", "camera cut", ...).

@@ -241,6 +241,9 @@ struct RenderSettings {
     float guard_band_fraction = 0.1f;  // of the height, on every side
     Generator generator = Generator::peel;
     float min_separation = 0.5f;  // camera-space metres between layer 0 and layer 1
+    // Multiplier before the tonemap; auto_length: measured each frame from the
+    // lit image's log-average luminance (the frame_statistics pass). The
+    // library keeps 1, which the tests and the report were recorded with.
     float exposure = 1.0f;
     // false: compose adds no environment irradiance where the radiosity's
     // confidence is low (with radiosity and AO off too: direct light only).
@@ -267,6 +270,14 @@ struct RenderSettings {
 inline constexpr float auto_reflection_distance_fraction = 1.0f;
 // The march distance (m) for these settings and a scene of this bounding radius.
 float reflection_distance(const RenderSettings& settings, float scene_bounding_radius);
+
+// `--exposure auto` (the frame_statistics pass; docs/deepgi.md, "Exposure"):
+// key / log-average luminance of the lit image, clamped to [min, max], and
+// moved `smoothing` of the way (in log space) from last frame's value.
+inline constexpr float auto_exposure_key = 0.0923f;
+inline constexpr float auto_exposure_min = 1.0f / 16.0f;
+inline constexpr float auto_exposure_max = 16.0f;
+inline constexpr float auto_exposure_smoothing = 0.1f;
 
 // An image size given as WIDTHxHEIGHT, each side 1 to limits::max_image_side.
 struct ImageSize {
@@ -321,6 +332,10 @@ struct NumericSetting {
     // settings), meaning this fraction of the scene's bounding radius; the
     // renderer resolves it for the scene it draws (resolve_auto_lengths).
     float scene_fraction = 0.0f;
+    // The row accepts `auto` (auto_length in the settings), which the
+    // renderer measures each frame instead of resolving it from the scene
+    // (exposure: Renderer::exposure_in_use()).
+    bool auto_measured = false;
 };
 // In panel order.
 std::span<const NumericSetting> numeric_settings();
@@ -335,10 +350,14 @@ std::string describe_limits(const NumericSetting& setting);
 void check_setting(const NumericSetting& setting, double value);
 
 // The value a length row holds for `auto`. Negative, so no valid length is
-// taken for it; validate() accepts it only in rows with a scene_fraction.
+// taken for it; validate() accepts it only in rows that accept_auto().
 inline constexpr float auto_length = -1.0f;
-inline bool accepts_auto(const NumericSetting& setting) {
+// A length that follows the scene: `auto` is a fraction of its size.
+inline bool is_scene_length(const NumericSetting& setting) {
     return setting.scene_fraction > 0.0f;
+}
+inline bool accepts_auto(const NumericSetting& setting) {
+    return is_scene_length(setting) || setting.auto_measured;
 }
 // What the command line, --script `set` and the panel accept for a row:
 // "auto" where accepts_auto() (returns auto_length), or a number within the

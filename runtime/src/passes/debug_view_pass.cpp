@@ -22,6 +22,7 @@ constexpr GLuint irradiance_layer1_binding = 18;
 constexpr GLuint prepared_radiance_binding = 21;
 constexpr GLuint ao_temporal_binding = 28;
 constexpr GLuint reflection_hit_binding = 5;
+constexpr GLuint statistics_binding = 9;
 
 class DebugViewPass final : public Pass {
 public:
@@ -43,7 +44,8 @@ public:
                                        {prepared_radiance_binding, "radiosity_prepare.radiance"},
                                        {radiosity_blurred_binding, "radiosity.blurred"},
                                        {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
-                                       {irradiance_layer1_binding, "radiosity.irradiance.layer1"}};
+                                       {irradiance_layer1_binding, "radiosity.irradiance.layer1"},
+                                       {statistics_binding, "frame_statistics"}};
         // The hit layer of each mirror ray.
         if (reflections_traced(*scene_, settings))
             reads.push_back({reflection_hit_binding, "reflection.hit"});

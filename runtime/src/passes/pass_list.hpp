@@ -18,6 +18,7 @@ DEEPGI_PASS(blur)        // AO and radiosity E share one bilateral blur (bilater
 DEEPGI_PASS(reflection)  // scenes with mirrors only
 DEEPGI_PASS(reflection_temporal)
 DEEPGI_PASS(compose)
-DEEPGI_PASS(tonemap)     // final image only
-DEEPGI_PASS(debug_view)  // any other view
-DEEPGI_PASS(antialias)   // final image only, after the tonemap
+DEEPGI_PASS(frame_statistics)  // exposure, depth ranges
+DEEPGI_PASS(tonemap)           // final image only
+DEEPGI_PASS(debug_view)        // any other view
+DEEPGI_PASS(antialias)         // final image only, after the tonemap

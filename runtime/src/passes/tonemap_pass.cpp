@@ -8,6 +8,7 @@ namespace {
 
 // Texture binding of tonemap.frag.
 constexpr GLuint radiance_binding = 8;
+constexpr GLuint statistics_binding = 9;
 
 class TonemapPass final : public Pass {
 public:
@@ -17,7 +18,9 @@ public:
     std::string_view name() const override { return "tonemap"; }
 
     PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{radiance_binding, "compose.radiance"}}, .writes = {}};
+        return {.reads = {{radiance_binding, "compose.radiance"},
+                          {statistics_binding, "frame_statistics"}},
+                .writes = {}};
     }
     void resize(FrameResources&) override {}  // writes the frame's display image
     bool enabled(const RenderSettings& settings) const override {

@@ -52,6 +52,9 @@ std::string key_help_text();
 // The window's state the keys change besides the settings.
 struct KeyState {
     float remembered_alpha = RadiositySettings{}.alpha;  // for toggle_temporal
+    // The exposure the last frame used (Renderer::exposure_in_use()): under
+    // `auto`, - and = switch to a manual exposure starting from it.
+    float exposure_in_use = 1.0f;
 };
 
 // Applies a settings key to `settings` (the result stays valid); returns
