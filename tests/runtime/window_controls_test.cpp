@@ -175,6 +175,15 @@ TEST_CASE("window: keys change the settings they name and keep them valid", "[ru
     automatic.exposure = auto_length;
     REQUIRE(apply_key_action(KeyAction::exposure_up, automatic, measured));
     CHECK(automatic.exposure == Approx(3.2f * 1.25f));
+    // Under auto, [ ] , . likewise step from the radius the last frame used.
+    automatic.ao.radius = auto_length;
+    automatic.radiosity.radius = auto_length;
+    measured.in_use.ao.radius = 0.2f;
+    measured.in_use.radiosity.radius = 3.0f;
+    REQUIRE(apply_key_action(KeyAction::ao_radius_up, automatic, measured));
+    CHECK(automatic.ao.radius == Approx(0.2f * 1.25f));
+    REQUIRE(apply_key_action(KeyAction::radiosity_radius_down, automatic, measured));
+    CHECK(automatic.radiosity.radius == Approx(3.0f / 1.25f));
     KeyLight unused_light;
     apply_set_command("exposure", {"auto"}, automatic, unused_light);
     CHECK(automatic.exposure == auto_length);

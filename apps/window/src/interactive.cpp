@@ -399,6 +399,7 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
             // 32 bytes read after the frame (Renderer::frame_statistics), for
             // the panel and the exposure keys.
             state.keys.exposure_in_use = state.renderer->exposure_in_use();
+            state.keys.in_use = state.renderer->settings_in_use();
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();

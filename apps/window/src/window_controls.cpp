@@ -22,10 +22,11 @@ constexpr std::array<KeyBinding, 17> key_table = {{
     {"Shift+V", KeyAction::previous_view, "previous debug view"},
     {"G", KeyAction::next_generator, "next deep G-buffer generator"},
     {"M", KeyAction::next_ao_method, "next AO estimator"},
-    {"[", KeyAction::ao_radius_down, "AO radius / 1.25"},
-    {"]", KeyAction::ao_radius_up, "AO radius * 1.25"},
-    {",", KeyAction::radiosity_radius_down, "radiosity radius / 1.25"},
-    {".", KeyAction::radiosity_radius_up, "radiosity radius * 1.25"},
+    {"[", KeyAction::ao_radius_down, "AO radius / 1.25 (from auto: the value in use)"},
+    {"]", KeyAction::ao_radius_up, "AO radius * 1.25 (from auto: the value in use)"},
+    {",", KeyAction::radiosity_radius_down,
+     "radiosity radius / 1.25 (from auto: the value in use)"},
+    {".", KeyAction::radiosity_radius_up, "radiosity radius * 1.25 (from auto: the value in use)"},
     {"-", KeyAction::exposure_down, "exposure / 1.25 (from auto: the value in use)"},
     {"=", KeyAction::exposure_up, "exposure * 1.25 (from auto: the value in use)"},
     {"L", KeyAction::toggle_layers, "AO and radiosity layers 2 <-> 1"},
@@ -48,11 +49,17 @@ Enum step_enum(Enum value, int steps) {
 }
 
 // Scales a float setting and keeps it inside validate()'s range by refusing
-// a step that would leave it (the key then does nothing).
-void scale_setting(RenderSettings& settings, std::string_view name, float factor) {
+// a step that would leave it (the key then does nothing). A length on `auto`
+// has no number to scale: the step starts from the length the last frame
+// used (`in_use`), which then stays as a manual value.
+void scale_setting(RenderSettings& settings, std::string_view name, float factor,
+                   const RenderSettings& in_use) {
     const NumericSetting* setting = find_numeric_setting(name);
     RenderSettings trial = settings;
-    setting->set(trial, setting->get(settings) * factor);
+    float value = setting->get(settings);
+    if (value == auto_length) value = setting->get(in_use);
+    if (!(value > 0.0f)) return;  // nothing resolved yet
+    setting->set(trial, value * factor);
     try {
         validate(trial);
         settings = trial;
@@ -142,16 +149,16 @@ bool apply_key_action(KeyAction action, RenderSettings& settings, KeyState& stat
             settings.ao.method = step_enum(settings.ao.method, 1);
             return true;
         case KeyAction::ao_radius_down:
-            scale_setting(settings, "ao-radius", 1.0f / 1.25f);
+            scale_setting(settings, "ao-radius", 1.0f / 1.25f, state.in_use);
             return true;
         case KeyAction::ao_radius_up:
-            scale_setting(settings, "ao-radius", 1.25f);
+            scale_setting(settings, "ao-radius", 1.25f, state.in_use);
             return true;
         case KeyAction::radiosity_radius_down:
-            scale_setting(settings, "radiosity-radius", 1.0f / 1.25f);
+            scale_setting(settings, "radiosity-radius", 1.0f / 1.25f, state.in_use);
             return true;
         case KeyAction::radiosity_radius_up:
-            scale_setting(settings, "radiosity-radius", 1.25f);
+            scale_setting(settings, "radiosity-radius", 1.25f, state.in_use);
             return true;
         case KeyAction::exposure_down:
         case KeyAction::exposure_up:
@@ -160,7 +167,7 @@ bool apply_key_action(KeyAction action, RenderSettings& settings, KeyState& stat
             if (settings.exposure == auto_length && state.exposure_in_use > 0.0f)
                 settings.exposure = state.exposure_in_use;
             scale_setting(settings, "exposure",
-                          action == KeyAction::exposure_up ? 1.25f : 1.0f / 1.25f);
+                          action == KeyAction::exposure_up ? 1.25f : 1.0f / 1.25f, settings);
             return true;
         case KeyAction::toggle_layers: {
             const int layers = settings.ao.layers == 1 ? limits::max_ao_layers : 1;

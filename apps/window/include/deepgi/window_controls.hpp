@@ -55,6 +55,9 @@ struct KeyState {
     // The exposure the last frame used (Renderer::exposure_in_use()): under
     // `auto`, - and = switch to a manual exposure starting from it.
     float exposure_in_use = 1.0f;
+    // The lengths the last frame resolved (Renderer::settings_in_use()): under
+    // `auto`, [ ] , . switch to a manual radius starting from the one in use.
+    RenderSettings in_use;
 };
 
 // Applies a settings key to `settings` (the result stays valid); returns
