@@ -14,7 +14,11 @@
 // near). The AO error is |ao-raw - peel's ao-raw| over the viewport's
 // layer-0 pixels (this frame's deep SAO before the temporal filter, with the
 // default estimator): its mean, and the share of pixels where it exceeds
-// 0.02 (the mean hides errors that gather where layer 1 is wrong). The G-buffer milliseconds are
+// 0.02 (the mean hides errors that gather where layer 1 is wrong). The
+// radiosity error is sum |E - peel's E| / sum peel's E over the same pixels
+// and the three channels, E this frame's raw deep radiosity gather of layer 0
+// (radiosity-raw-layer0; its bounce reads each renderer's own history, so a
+// wrong layer 1 also errs through last frame's light). The G-buffer milliseconds are
 // the median of the pass's timer over the same frames (CPU clock around glFinish, or
 // --timing gpu).
 #include "bench_harness.hpp"
@@ -74,7 +78,8 @@ struct Tally {
     long over = 0, under = 0, equal = 0;
     double ao_error_sum = 0.0;
     long ao_pixels = 0;
-    long ao_large = 0;  // |error| > 0.02
+    long ao_large = 0;                            // |error| > 0.02
+    double e_error_sum = 0.0, e_truth_sum = 0.0;  // radiosity, layer 0, three channels
     std::vector<double> gbuffer_ms;
 };
 
@@ -118,8 +123,8 @@ int main(int argc, char** argv) {
         std::string measured;
         fmt::print(
             "| scene | path | generator | over-peeled (%) | under-peeled (%) | equal (%) | AO "
-            "mean abs error | AO error > 0.02 (%) | gbuffer (ms) "
-            "|\n|---|---|---|---|---|---|---|---|---|\n");
+            "mean abs error | AO error > 0.02 (%) | E relative error (%) | gbuffer (ms) "
+            "|\n|---|---|---|---|---|---|---|---|---|---|\n");
         for (const auto& name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(name);
             auto make = [&](deepgi::Generator generator) {
@@ -149,11 +154,14 @@ int main(int argc, char** argv) {
                         peel->read_pass_output("gbuffer-depth-layer0");
                     const deepgi::FloatImage truth = peel->read_pass_output("gbuffer-depth-layer1");
                     const deepgi::FloatImage truth_ao = peel->read_pass_output("ao-raw");
+                    const deepgi::FloatImage truth_e =
+                        peel->read_pass_output("radiosity-raw-layer0");
                     for (std::size_t g = 0; g < tested.size(); ++g) {
                         Tally& tally = tallies[g];
                         tally.gbuffer_ms.push_back(gbuffer_ms(*tested[g]));
                         const auto layer1 = tested[g]->read_pass_output("gbuffer-depth-layer1");
                         const auto ao = tested[g]->read_pass_output("ao-raw");
+                        const auto e = tested[g]->read_pass_output("radiosity-raw-layer0");
                         for (int y = layout.guard; y < layout.guard + settings.height; ++y) {
                             for (int x = layout.guard; x < layout.guard + settings.width; ++x) {
                                 // Nothing in layer 1 counts as infinitely far.
@@ -165,6 +173,11 @@ int main(int argc, char** argv) {
                                     tally.ao_error_sum += error;
                                     tally.ao_large += error > 0.02f ? 1 : 0;
                                     ++tally.ao_pixels;
+                                    for (int c = 0; c < 3; ++c) {
+                                        tally.e_error_sum +=
+                                            std::abs(e.at(x, y, c) - truth_e.at(x, y, c));
+                                        tally.e_truth_sum += truth_e.at(x, y, c);
+                                    }
                                 }
                                 if (t == inf && a == inf) continue;
                                 if (t != inf && a != inf &&
@@ -178,16 +191,17 @@ int main(int argc, char** argv) {
                         }
                     }
                 }
-                fmt::print("| {} | {} | peel | - | - | - | - | - | {:.2f} |\n", name, path,
+                fmt::print("| {} | {} | peel | - | - | - | - | - | - | {:.2f} |\n", name, path,
                            deepgi::bench::median(peel_ms));
                 for (std::size_t g = 0; g < tested.size(); ++g) {
                     const Tally& t = tallies[g];
                     const long layer1 = t.over + t.under + t.equal;
-                    fmt::print("| {} | {} | {} | {} | {} | {} | {:.4f} | {} | {:.2f} |\n", name,
-                               path, generator_names[g], percent(t.over, layer1),
+                    fmt::print("| {} | {} | {} | {} | {} | {} | {:.4f} | {} | {:.2f} | {:.2f} |\n",
+                               name, path, generator_names[g], percent(t.over, layer1),
                                percent(t.under, layer1), percent(t.equal, layer1),
                                t.ao_pixels > 0 ? t.ao_error_sum / double(t.ao_pixels) : 0.0,
                                percent(t.ao_large, t.ao_pixels),
+                               t.e_truth_sum > 0.0 ? 100.0 * t.e_error_sum / t.e_truth_sum : 0.0,
                                deepgi::bench::median(t.gbuffer_ms));
                 }
                 std::fflush(stdout);
