@@ -195,6 +195,10 @@ int run(const ReferenceOptions& options) {
              {"reference-irradiance-standard-error", &images.irradiance_standard_error,
               PreviewMapping::normalised},
              {"reference-irradiance-rays", &images.irradiance_rays, PreviewMapping::normalised},
+             {"reference-irradiance-layer0", &images.irradiance_layer0, PreviewMapping::irradiance},
+             {"reference-irradiance-layer1", &images.irradiance_layer1, PreviewMapping::irradiance},
+             {"reference-irradiance-neither", &images.irradiance_neither,
+              PreviewMapping::irradiance},
              {"reference-direct-radiance", &images.direct_radiance, PreviewMapping::radiance}});
     }
     // Only for a scene with mirrors: a scene without writes the same set as

@@ -64,6 +64,11 @@ glm::dvec3 reflected_key_light(const RayScene& scene, const RayScene::Hit& hit,
     return glm::dvec3(surface.albedo) / pi * glm::dvec3(incident) * double(cosine);
 }
 
+// Slot of a classifier's answer in a split: layer 0, layer 1, neither.
+int layer_slot(int layer) {
+    return layer == 0 ? 0 : layer == 1 ? 1 : 2;
+}
+
 // Power heuristic (exponent 2) weight of a technique with density `mine`
 // against one with density `other`, both per unit solid angle.
 double power_heuristic(double mine, double other) {
@@ -85,7 +90,7 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
 
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
                                float radius, const IrradianceRayBudget& budget, std::uint64_t seed,
-                               int bounces) {
+                               int bounces, const LayerClassifier& classify) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
@@ -129,7 +134,11 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
 
     // One sample's estimate of E / pi from a point of the direction square
     // and, when the scene has emitters, a point of the emitter square.
-    auto sample = [&](glm::dvec2 direction_point, glm::dvec2 emitter_point, Random& random) {
+    // `parts` gains the same light by who holds the surface it comes from
+    // (layer 0, layer 1, neither), when a classifier is given; the total is
+    // summed as it always was, so E does not move by a bit.
+    auto sample = [&](glm::dvec2 direction_point, glm::dvec2 emitter_point, Random& random,
+                      glm::dvec3* parts) {
         glm::dvec3 value(0.0);
 
         // Cosine-weighted direction (pdf cos / pi): L itself estimates E / pi.
@@ -164,6 +173,8 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
             // L_K(y) = L_1(y) + albedo(y) / pi * E_(K-1)(y).
             if (bounces > 1 && surface.albedo != glm::vec3(0.0f))
                 value += glm::dvec3(surface.albedo) * passed_on(y, hit.normal, bounces - 1, random);
+            // All of it leaves y, further bounces included: y's layer holds it.
+            if (classify && value != glm::dvec3(0.0)) parts[layer_slot(classify(y))] += value;
         }
 
         // A point y on an emitter, uniform over its area (pdf probability /
@@ -198,9 +209,11 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
                         // weight p_emitter^2 / (p_emitter^2 + p_cos^2), as
                         // E / pi; written so that no density divides.
                         const double p_cos = cos_x / pi;
-                        value +=
+                        const glm::dvec3 sent =
                             emitter.emissive *
                             (cos_x * p_emitter / (pi * (p_emitter * p_emitter + p_cos * p_cos)));
+                        value += sent;
+                        if (classify) parts[layer_slot(classify(glm::vec3(y)))] += sent;
                     }
                 }
             }
@@ -221,6 +234,7 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
         // sets stay independent (and one bounce draws none, unchanged).
         Random bounce_random{0};
         glm::dvec3 sum{0.0};  // of the samples' E / pi
+        glm::dvec3 parts[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};  // sum, split
     };
     const int replicate_count = std::max(2, budget.replicates);
     std::vector<Replicate> replicates(static_cast<std::size_t>(replicate_count));
@@ -261,7 +275,7 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
                 r.sum += sample(
                     r.directions.point(index, reversed_y),
                     sample_emitters ? r.emitter_points.point(index, reversed_y) : glm::dvec2(0.0),
-                    r.bounce_random);
+                    r.bounce_random, r.parts);
         }
         irradiance = estimate(points, error);
         // The error estimate from a few sets is itself noisy, and stopping on
@@ -286,6 +300,18 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
     result.standard_error = error;
     result.rays = int(rays);
     result.samples = int(points * replicate_count);
+    // The parts as E itself: pi times the mean of the set means, so they sum
+    // to E up to rounding. Without a classifier all of E is "neither", as
+    // the occlusion split of ambient_visibility_at().
+    if (classify) {
+        for (int k = 0; k < 3; ++k) {
+            glm::dvec3 mean(0.0);
+            for (const Replicate& r : replicates) mean += r.parts[k] / double(points);
+            result.by_layer[k] = pi * (mean / double(replicate_count));
+        }
+    } else {
+        result.by_layer[2] = irradiance;
+    }
     return result;
 }
 

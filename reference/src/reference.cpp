@@ -102,6 +102,9 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
         out.irradiance = image(3, 0.0f);
         out.irradiance_standard_error = image(3, 0.0f);
         out.irradiance_rays = image(1, 0.0f);
+        out.irradiance_layer0 = image(3, 0.0f);
+        out.irradiance_layer1 = image(3, 0.0f);
+        out.irradiance_neither = image(3, 0.0f);
         out.direct_radiance = image(3, 0.0f);
     }
     const bool reflections = settings.reflections && scene.has_mirrors(render.mirror_roughness);
@@ -211,14 +214,17 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                 for (int x = 0; x < w; ++x) {
                     const std::size_t i = std::size_t(y) * w + x;
                     if (out.depth_layer0.pixels[i] <= 0.0f) continue;
-                    const IrradianceSample s =
-                        irradiance_at(scene, positions[i], normals[i], settings.radiosity_radius,
-                                      settings.irradiance_rays,
-                                      stream_seed(settings.seed, pixels + i), settings.bounces);
+                    const IrradianceSample s = irradiance_at(
+                        scene, positions[i], normals[i], settings.radiosity_radius,
+                        settings.irradiance_rays, stream_seed(settings.seed, pixels + i),
+                        settings.bounces, classify);
                     for (int c = 0; c < 3; ++c) {
                         out.irradiance.pixels[3 * i + c] = float(s.irradiance[c]);
                         out.irradiance_standard_error.pixels[3 * i + c] =
                             float(s.standard_error[c]);
+                        out.irradiance_layer0.pixels[3 * i + c] = float(s.by_layer[0][c]);
+                        out.irradiance_layer1.pixels[3 * i + c] = float(s.by_layer[1][c]);
+                        out.irradiance_neither.pixels[3 * i + c] = float(s.by_layer[2][c]);
                     }
                     out.irradiance_rays.pixels[i] = float(s.rays);
                     const glm::dvec3 direct =

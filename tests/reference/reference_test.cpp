@@ -323,11 +323,12 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     REQUIRE(irradiance.pixels == images.irradiance.pixels);
     REQUIRE(deepgi::read_pfm(directory / "reference-direct-radiance.pfm").pixels ==
             images.direct_radiance.pixels);
-    for (const char* name :
-         {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
-          "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
-          "reference-ao-standard-error.pfm", "reference-ao-rays.pfm",
-          "reference-irradiance-standard-error.pfm", "reference-irradiance-rays.pfm"})
+    for (const char* name : {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
+                             "reference-ao-hit-visibility.pfm", "reference-ao-occlusion-split.pfm",
+                             "reference-ao-standard-error.pfm", "reference-ao-rays.pfm",
+                             "reference-irradiance-standard-error.pfm",
+                             "reference-irradiance-rays.pfm", "reference-irradiance-layer0.pfm",
+                             "reference-irradiance-layer1.pfm", "reference-irradiance-neither.pfm"})
         REQUIRE(fs::exists(directory / name));
     // A PNG preview beside each PFM, and nothing else.
     int pfm_count = 0;
@@ -344,7 +345,7 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
         png.read(signature.data(), 8);
         CHECK(signature == "\x89PNG\r\n\x1a\n");
     }
-    CHECK(pfm_count == 11);
+    CHECK(pfm_count == 14);
     fs::remove_all(directory);
 
     for (const char* arguments :

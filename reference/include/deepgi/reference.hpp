@@ -172,6 +172,11 @@ struct IrradianceSample {
     glm::dvec3 standard_error{0.0};
     int rays = 0;     // rays from X: cosine directions and emitter shadow rays
     int samples = 0;  // cosine directions (each with its emitter point, if any)
+    // E split by who could see the surface the light leaves (the classifier
+    // given to irradiance_at(), as the occlusion split of AoSample): layer 0,
+    // layer 1, neither. The same samples as `irradiance`, so the three sum to
+    // it up to rounding; without a classifier all of it is in [2].
+    glm::dvec3 by_layer[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
 };
 
 // Counted in rays from X: a cosine direction is one ray, an emitter point one
@@ -217,9 +222,14 @@ glm::dvec3 direct_outgoing_radiance(const RayScene& scene, const RayScene::Hit& 
 // so the sets stay independent and the standard error stays honest. K = 1
 // is the estimator above, draw for draw. Each further bounce is one more
 // ray, counted against the caps.
+//
+// With `classify`, by_layer splits E by the layer that holds the surface the
+// light leaves: the cosine ray's first surface y (all of L_K(y)) or the
+// emitter point. The classifier traces no ray of the estimate and draws no
+// random number, so E is the same with it or without.
 IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::vec3 normal,
                                float radius, const IrradianceRayBudget& budget, std::uint64_t seed,
-                               int bounces = 1);
+                               int bounces = 1, const LayerClassifier& classify = {});
 
 // The mirror reflection at a layer-0 point X of a mirror (docs/reflections.md,
 // "Against the ray tracer"): the ray leaves X along r = reflect(d, n_s), d
@@ -275,6 +285,12 @@ struct ReferenceImages {
     FloatImage irradiance;                 // RGB E_K, K = bounces (0 on sky)
     FloatImage irradiance_standard_error;  // RGB, per channel
     FloatImage irradiance_rays;            // rays spent per pixel
+    // RGB parts of `irradiance` by who could see the surface the light
+    // leaves (IrradianceSample::by_layer, layer_classifier()): layer 0,
+    // layer 1, neither. They sum to `irradiance` up to float rounding.
+    FloatImage irradiance_layer0;
+    FloatImage irradiance_layer1;
+    FloatImage irradiance_neither;
     // RGB direct light reflected at layer 0 (emissive excluded): what the
     // direct light pass writes, with an exact shadow ray for the shadow map.
     FloatImage direct_radiance;
