@@ -123,10 +123,11 @@ TEST_CASE("cli: deepgi reference writes its images as one set", "[runtime][cli][
     REQUIRE(!contains(full.err, "depth-layer0"));
     REQUIRE(!fs::exists(set));
     REQUIRE(fs::is_empty(dir));  // no temporary left either
-    // The whole set (11 images, each a PFM and its PNG preview), then a
-    // second run replacing it whole (7 images).
+    // The whole set (14 images, each a PFM and its PNG preview: 11, and the
+    // irradiance split by the layer holding its source), then a second run
+    // replacing it whole (7 images).
     REQUIRE(run_command(reference("--output " + set.string())).status == 0);
-    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 22);
+    REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 28);
     REQUIRE(run_command(reference("--no-irradiance --output " + set.string())).status == 0);
     REQUIRE(std::distance(fs::directory_iterator(set), fs::directory_iterator()) == 14);
     // A folder holding anything else is refused before tracing.
