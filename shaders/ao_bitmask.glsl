@@ -60,13 +60,20 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
         }
       }
     }
-    float previous = slice_measure(start, n);
-    for (int i = 0; i < bitmask_sectors; ++i) {
-      float next = slice_measure(start + pi * float(i + 1) / float(bitmask_sectors), n);
-      if ((occupied & (1u << uint(i))) == 0u) visible += slice.normal_length * (next - previous);
-      previous = next;
+    // The open measure less that of each run of set bits: a run costs two
+    // evaluations of G where summing the 32 sectors would cost 33.
+    float slice_open = slice_measure(n + 0.5 * pi, n) - slice_measure(start, n);
+    float hidden = 0.0;
+    while (occupied != 0u) {
+      int first = findLSB(occupied);
+      uint above = ~(occupied >> uint(first));  // the run's end is its lowest zero
+      int end = above == 0u ? bitmask_sectors : first + findLSB(above);
+      hidden += slice_measure(start + pi * float(end) / float(bitmask_sectors), n) -
+                slice_measure(start + pi * float(first) / float(bitmask_sectors), n);
+      occupied &= end >= bitmask_sectors ? 0u : ~((1u << uint(end)) - 1u);
     }
-    open += slice.normal_length * (slice_measure(n + 0.5 * pi, n) - slice_measure(start, n));
+    visible += slice.normal_length * (slice_open - hidden);
+    open += slice.normal_length * slice_open;
   }
   return open > 0.0 ? pow(clamp(visible / open, 0.0, 1.0), intensity) : 1.0;
 }
