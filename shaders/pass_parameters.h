@@ -16,9 +16,9 @@ struct SaoParameters {
   float q;          // screen-space radius (px) at which taps move one MIP level down
 
   int max_mip;      // deepest depth-pyramid level a tap may read
-  int unused1;      // the estimator is chosen when the program is built (AO_METHOD)
-  float thickness;  // march: solid depth (m) behind a surface with no back face
-  float unused0;
+  int slices;       // gtao and bitmask: screen-space slices per pixel
+  float thickness;  // march, spiral-thick, bitmask: solid depth (m) behind a stored surface
+  int steps;        // gtao and bitmask: samples per slice side
 };
 
 // The deep radiosity gather (radiosity.frag).

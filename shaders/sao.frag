@@ -6,7 +6,8 @@
 // estimator and layer count): ao_published.glsl, ao_solid_angle.glsl and
 // ao_spiral_thick.glsl gather the spiral taps of the generated ao_taps.glsl
 // (spiral_tap below), ao_march.glsl follows DEEPGI_AO_MARCH_RAYS rays through
-// the layers.
+// the layers, ao_gtao.glsl and ao_bitmask.glsl march screen-space slices
+// (ao_slice.glsl).
 //
 // Define AO_LAYERS 1 to read layer 0 only (for comparison); the default is 2.
 // The blur that follows keys on the depth pyramid and the G-buffer normal, so
@@ -35,7 +36,7 @@ layout(binding = 0) uniform sampler2DArray gbuffer_normal;
 // the stored surface (reversed Z, 0 = none), where that surface's object ends.
 layout(binding = 29) uniform sampler2DArray backface_depth;
 
-// sao.thickness, march and thick spiral only: how deep (m) behind a stored
+// sao.thickness, march, thick spiral and bitmask: how deep (m) behind a stored
 // surface with no back face behind it (an open mesh: a floor, a wall plane)
 // the scene is taken as solid.
 layout(std140, binding = DEEPGI_UBO_PASS) uniform SaoBlock {
@@ -72,6 +73,13 @@ bool spiral_tap(int i, ivec2 pixel, mat2 rotation, float radius_pixels, out ivec
   return true;
 }
 
+// The slice estimators' shared code, here rather than in each of their
+// includes: the loader expands every #include once, before the preprocessor
+// sees the #if below, so a second include in the next branch would be empty.
+#if AO_METHOD == DEEPGI_AO_METHOD_GTAO || AO_METHOD == DEEPGI_AO_METHOD_BITMASK
+#include "ao_slice.glsl"
+#endif
+
 #if AO_METHOD == DEEPGI_AO_METHOD_PUBLISHED
 #include "ao_published.glsl"
 #elif AO_METHOD == DEEPGI_AO_METHOD_SOLID_ANGLE
@@ -80,6 +88,10 @@ bool spiral_tap(int i, ivec2 pixel, mat2 rotation, float radius_pixels, out ivec
 #include "ao_march.glsl"
 #elif AO_METHOD == DEEPGI_AO_METHOD_SPIRAL_THICK
 #include "ao_spiral_thick.glsl"
+#elif AO_METHOD == DEEPGI_AO_METHOD_GTAO
+#include "ao_gtao.glsl"
+#elif AO_METHOD == DEEPGI_AO_METHOD_BITMASK
+#include "ao_bitmask.glsl"
 #else
 #error AO_METHOD must be one of DEEPGI_AO_METHOD_*
 #endif

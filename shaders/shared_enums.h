@@ -39,6 +39,8 @@
 #define DEEPGI_AO_METHOD_SOLID_ANGLE 1  // the reference's integral over the seen surface
 #define DEEPGI_AO_METHOD_MARCH 2        // the reference's rays, marched through slabs behind both layers
 #define DEEPGI_AO_METHOD_SPIRAL_THICK 3  // the spiral taps' solids, unioned in a hemisphere bitmask
+#define DEEPGI_AO_METHOD_GTAO 4         // horizons per screen-space slice (Jimenez et al. 2016)
+#define DEEPGI_AO_METHOD_BITMASK 5      // 32 sectors per slice, thick samples (Therrien et al. 2023)
 
 // The march (sao.frag): cosine-weighted rays per pixel and evenly spaced steps
 // per ray. Steps matter more than rays: with 8 steps a ray jumps over the

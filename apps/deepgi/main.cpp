@@ -303,7 +303,10 @@ int main(int argc, char** argv) {
                                "face; march casts the reference's rays through the same "
                                "solids, about 5x the cost of the spiral gathers; solid-angle "
                                "is the reference's integral over the seen surface on the "
-                               "spiral taps; published is 1 - sqrt(...))",
+                               "spiral taps; published is 1 - sqrt(...); gtao and bitmask "
+                               "march --ao-slices screen-space slices of --ao-steps samples: "
+                               "gtao's horizons, or bitmask's 32 sectors hidden by samples "
+                               "--ao-thickness thick)",
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->capture_default_str();
 

@@ -52,11 +52,13 @@ constexpr std::array<EnumName<TimingMode>, 3> timing_table = {{
     {TimingMode::gpu, "gpu"},
 }};
 
-constexpr std::array<EnumName<AoMethod>, 4> ao_method_table = {{
+constexpr std::array<EnumName<AoMethod>, 6> ao_method_table = {{
     {AoMethod::spiral_thick, "spiral-thick"},
     {AoMethod::solid_angle, "solid-angle"},
     {AoMethod::march, "march"},
     {AoMethod::published, "published"},
+    {AoMethod::gtao, "gtao"},
+    {AoMethod::bitmask, "bitmask"},
 }};
 
 constexpr std::array<EnumName<RadiosityMethod>, 2> radiosity_method_table = {{
@@ -185,7 +187,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 27> numeric_table = {{
+const std::array<NumericSetting, 29> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -335,11 +337,12 @@ const std::array<NumericSetting, 27> numeric_table = {{
      .slider_max = 0.99f,
      DEEPGI_FLOAT_FIELD(ao.alpha)},
     {.name = "ao-thickness",
-     .label = "thickness (m, march, spiral-thick)",
+     .label = "thickness (m, march, spiral-thick, bitmask)",
      .group = "ao",
      .owner = "sao",
      .help = "Deep SAO, march and spiral-thick: the scene is taken as solid this deep behind a "
-             "stored surface with no back face behind it",
+             "stored surface with no back face behind it; bitmask: every sample's constant "
+             "thickness",
      .unit = "metres",
      .minimum = 0.0f,
      .minimum_inclusive = false,
@@ -349,6 +352,28 @@ const std::array<NumericSetting, 27> numeric_table = {{
      .logarithmic = true,
      DEEPGI_FLOAT_FIELD(ao.thickness),
      .scene_fraction = kThicknessFraction},
+    {.name = "ao-slices",
+     .label = "slices (gtao, bitmask)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO, gtao and bitmask: screen-space slices per pixel",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_ao_slices),
+     .slider_min = 1.0f,
+     .slider_max = float(limits::max_ao_slices),
+     DEEPGI_INT_FIELD(ao.slices)},
+    {.name = "ao-steps",
+     .label = "steps (gtao, bitmask)",
+     .group = "ao",
+     .owner = "sao",
+     .help = "Deep SAO, gtao and bitmask: samples per slice side, out to the radius",
+     .integer = true,
+     .minimum = 1.0f,
+     .maximum = float(limits::max_ao_steps),
+     .slider_min = 1.0f,
+     .slider_max = float(limits::max_ao_steps),
+     DEEPGI_INT_FIELD(ao.steps)},
     {.name = "radiosity-radius",
      .label = "radius (m)",
      .group = "radiosity",

@@ -112,7 +112,8 @@ constexpr int accumulated_frames = 9;
 
 // What each estimator must reach. The march and the solid angle keep the
 // targets they were built to (MAE <= .03, |bias| <= .01 on both stages,
-// accumulated over 9 still frames); the thick spiral is held to the
+// accumulated over 9 still frames); gtao and bitmask are held to the same
+// ones and reported where they miss; the thick spiral is held to the
 // stricter ones it was built to: MAE <= .015 and |bias| <= .005
 // on the first frame, MAE <= .01 after 64 still frames.
 struct Targets {
@@ -230,6 +231,60 @@ spiral::test::TargetTable& targets() {
             {"spiral-thick/warehouse/bias/first", {0.0165, "measured +0.0150"}},
             {"spiral-thick/warehouse/mae/accumulated", {0.0278, "measured 0.0253"}},
             {"spiral-thick/warehouse/bias/accumulated", {0.0156, "measured +0.0142"}},
+            // The slice estimators (docs/deep-sao.md, "Slice estimators"),
+            // reported beside the others at the defaults (2 slices x 8 steps,
+            // thickness 0.2 m): a horizon takes everything below it as hidden,
+            // so both are too dark behind thin occluders, and there layer 1
+            // darkens them further (two-vs-one, and no layer-1 gain on
+            // ref-bench).
+            {"gtao/ref-crease/bias/first", {0.0147, "measured 0.0134"}},
+            {"gtao/ref-crease/bias/accumulated", {0.0147, "measured 0.0134"}},
+            {"bitmask/ref-crease/bias/first", {0.0147, "measured 0.0134"}},
+            {"bitmask/ref-crease/bias/accumulated", {0.0147, "measured 0.0133"}},
+            {"gtao/ref-slab/bias/first", {0.032, "measured 0.0291"}},
+            {"gtao/ref-slab/open/first", {4.0, "measured 2 pixels"}},
+            {"gtao/ref-slab/bias/accumulated", {0.0321, "measured 0.0291"}},
+            {"gtao/ref-slab/open/accumulated", {3.0, "measured 1 pixel"}},
+            {"bitmask/ref-slab/bias/first", {0.0226, "measured 0.0205"}},
+            {"bitmask/ref-slab/open/first", {4.0, "measured 2 pixels"}},
+            {"bitmask/ref-slab/bias/accumulated", {0.0226, "measured 0.0205"}},
+            {"bitmask/ref-slab/open/accumulated", {3.0, "measured 1 pixel"}},
+            {"gtao/ref-board/bias/first", {0.0189, "measured 0.0172"}},
+            {"gtao/ref-board/bias/accumulated", {0.0188, "measured 0.0171"}},
+            {"bitmask/ref-board/bias/first", {0.0184, "measured 0.0167"}},
+            {"bitmask/ref-board/bias/accumulated", {0.0183, "measured 0.0166"}},
+            {"gtao/ref-bench/mae/first", {0.0409, "measured 0.0372"}},
+            {"gtao/ref-bench/bias/first", {0.0404, "measured 0.0368"}},
+            {"gtao/ref-bench/two-vs-one/first", {0.00174, "measured 0.00158"}},
+            {"gtao/ref-bench/layer-1-gain/first", {0.00229, "measured 0.00208"}},
+            {"gtao/ref-bench/mae/accumulated", {0.0412, "measured 0.0374"}},
+            {"gtao/ref-bench/bias/accumulated", {0.0407, "measured 0.037"}},
+            {"gtao/ref-bench/two-vs-one/accumulated", {0.00182, "measured 0.00165"}},
+            {"gtao/ref-bench/layer-1-gain/accumulated", {0.00237, "measured 0.00215"}},
+            {"bitmask/ref-bench/bias/first", {0.021, "measured 0.0191"}},
+            {"bitmask/ref-bench/two-vs-one/first", {2.21e-05, "measured 2.01e-05"}},
+            {"bitmask/ref-bench/layer-1-gain/first", {0.000572, "measured 0.00052"}},
+            {"bitmask/ref-bench/bias/accumulated", {0.0212, "measured 0.0193"}},
+            {"bitmask/ref-bench/two-vs-one/accumulated", {0.000107, "measured 9.75e-05"}},
+            {"bitmask/ref-bench/layer-1-gain/accumulated", {0.000657, "measured 0.000598"}},
+            {"gtao/cornell/mae/first", {0.0638, "measured 0.058"}},
+            {"gtao/cornell/bias/first", {0.0539, "measured 0.049"}},
+            {"gtao/cornell/two-vs-one/first", {0.000867, "measured 0.000788"}},
+            {"gtao/cornell/mae/accumulated", {0.0642, "measured 0.0583"}},
+            {"gtao/cornell/bias/accumulated", {0.0542, "measured 0.0493"}},
+            {"gtao/cornell/two-vs-one/accumulated", {0.000723, "measured 0.000657"}},
+            {"bitmask/cornell/mae/first", {0.0474, "measured 0.0431"}},
+            {"bitmask/cornell/bias/first", {0.0356, "measured 0.0324"}},
+            {"bitmask/cornell/two-vs-one/first", {0.000628, "measured 0.000571"}},
+            {"bitmask/cornell/mae/accumulated", {0.0475, "measured 0.0432"}},
+            {"bitmask/cornell/bias/accumulated", {0.0357, "measured 0.0324"}},
+            {"bitmask/cornell/two-vs-one/accumulated", {0.000525, "measured 0.000477"}},
+            {"gtao/atrium/two-vs-one/first", {2.29e-05, "measured 2.08e-05"}},
+            {"gtao/atrium/two-vs-one/accumulated", {2.63e-05, "measured 2.39e-05"}},
+            {"gtao/warehouse/mae/first", {0.0374, "measured 0.034"}},
+            {"gtao/warehouse/bias/first", {0.019, "measured 0.0173"}},
+            {"gtao/warehouse/mae/accumulated", {0.0372, "measured 0.0338"}},
+            {"gtao/warehouse/bias/accumulated", {0.019, "measured 0.0173"}},
         });
     return table;
 }
@@ -261,8 +316,11 @@ void check_stage(const std::string& name, const std::string& stage, const StageE
     // after the blur wherever no occluded pixel lies within its reach.
     check_target(name, "open", stage, double(errors.raw_two_layers.open_core_dark), 0.0);
     check_target(name, "open-blurred", stage, double(two.open_core_dark), 0.0);
-    // On the bench behind the posts layer 1 sees occluders layer 0 cannot.
-    if (name.ends_with("/ref-bench")) CHECK(two.mae < one.mae - 5e-4);
+    // On the bench behind the posts layer 1 sees occluders layer 0 cannot:
+    // two layers' MAE at least 5e-4 below one layer's (a target row, so that
+    // an estimator that layer 1 darkens further is reported, not hidden).
+    if (name.ends_with("/ref-bench"))
+        check_target(name, "layer-1-gain", stage, two.mae - one.mae + 5e-4, 0.0);
 }
 
 }  // namespace
@@ -273,7 +331,8 @@ TEST_CASE("ao accuracy: blurred deep SAO estimates the ray-traced visibility on 
                                "ref-bench", "cornell", "atrium", "warehouse");
     const Scene scene = load_scene(name);
     const ReferenceImages truth = trace_truth(scene);
-    for (AoMethod method : {AoMethod::spiral_thick, AoMethod::solid_angle, AoMethod::march}) {
+    for (AoMethod method : {AoMethod::spiral_thick, AoMethod::solid_angle, AoMethod::march,
+                            AoMethod::gtao, AoMethod::bitmask}) {
         // Keys of short_of_target() and the messages name the method first.
         const std::string key = std::string(to_string(method)) + "/" + name;
         const Targets targets = targets_of(method);

@@ -32,3 +32,13 @@ foreach(tag reference pyramid blur rotation robustness compose antialias)
   add_test(NAME deepgi_sao_${tag} COMMAND deepgi_sao_tests "[${tag}]")
   set_tests_properties(deepgi_sao_${tag} PROPERTIES LABELS "runtime;sao" TIMEOUT 300)
 endforeach()
+
+# The slice estimators (gtao, bitmask) against their CPU evaluation and the
+# corner's closed form.
+add_executable(deepgi_ao_slice_tests ao_slice_test.cpp ao_slice_reference.cpp)
+target_link_libraries(deepgi_ao_slice_tests PRIVATE deepgi_sao_reference spiral_catch_main)
+target_include_directories(deepgi_ao_slice_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
+target_compile_definitions(deepgi_ao_slice_tests PRIVATE
+  SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=${_sao_test_tau})
+add_test(NAME deepgi_sao_slices COMMAND deepgi_ao_slice_tests "[slices]")
+set_tests_properties(deepgi_sao_slices PROPERTIES LABELS "runtime;sao" TIMEOUT 300)

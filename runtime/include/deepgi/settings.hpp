@@ -62,6 +62,9 @@ enum class AoMethod {
     march = DEEPGI_AO_METHOD_MARCH,  // the reference's rays through slabs behind both layers
     // the spiral taps' solids (front to back face), unioned in a hemisphere bitmask
     spiral_thick = DEEPGI_AO_METHOD_SPIRAL_THICK,
+    gtao = DEEPGI_AO_METHOD_GTAO,  // horizons per screen-space slice (Jimenez et al. 2016)
+    // 32 sectors per slice, each sample a constant-thickness occluder (Therrien et al. 2023)
+    bitmask = DEEPGI_AO_METHOD_BITMASK,
 };
 
 // Deep radiosity estimators (docs/radiosity.md).
@@ -127,6 +130,8 @@ inline constexpr float max_guard_band_fraction = 1.0f;
 inline constexpr int max_pyramid_mip_level = 15;
 inline constexpr float min_pyramid_q = 1.0f;
 inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
+inline constexpr int max_ao_slices = 8;  // gtao and bitmask (ao-slices)
+inline constexpr int max_ao_steps = 32;  // gtao and bitmask, per slice side (ao-steps)
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_steps = 1024;
@@ -144,9 +149,15 @@ constexpr float default_ao_bias(AoMethod method) {
 }
 
 // Whether the estimator reads the spiral tap header (ao_taps.glsl): the march
-// casts DEEPGI_AO_MARCH_RAYS rays of its own instead.
+// casts DEEPGI_AO_MARCH_RAYS rays of its own instead, gtao and bitmask march
+// ao-slices screen-space slices of ao-steps samples per side.
 constexpr bool ao_method_gathers_taps(AoMethod method) {
-    return method != AoMethod::march;
+    return method != AoMethod::march && method != AoMethod::gtao && method != AoMethod::bitmask;
+}
+
+// Whether the estimator marches screen-space slices (ao-slices, ao-steps).
+constexpr bool ao_method_marches_slices(AoMethod method) {
+    return method == AoMethod::gtao || method == AoMethod::bitmask;
 }
 
 // Whether the estimator ends each stored surface's solid at its back face
@@ -173,7 +184,13 @@ struct AoSettings {
     // plane); behind any other the solid ends at the back face (the
     // backface_depth pass). 0.1 to 1 m move warehouse's bias by less than
     // .001 (docs/deep-sao.md, "The march").
+    // The bitmask estimator takes every sample as this thick (its constant
+    // thickness, Therrien et al. 2023), back face or not.
     float thickness = 0.2f;
+    // gtao and bitmask only: screen-space slices per pixel and samples per
+    // slice side (docs/deep-sao.md, "Slice estimators").
+    int slices = 2;
+    int steps = 8;
     // Temporal filter: weight of the history where the point moves on
     // screen; a still point keeps the running mean of up to
     // DEEPGI_TEMPORAL_CAP frames (0: the raw SAO result of each frame); see

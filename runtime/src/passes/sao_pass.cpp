@@ -2,7 +2,8 @@
 // shader loader finds: the build's generated header in the renderer, a header
 // written at run time by the noise study and the tests. Each estimator is an
 // include of sao.frag chosen by `#define AO_METHOD` (ao_published.glsl,
-// ao_solid_angle.glsl, ao_march.glsl, ao_spiral_thick.glsl): one program per
+// ao_solid_angle.glsl, ao_march.glsl, ao_spiral_thick.glsl, ao_gtao.glsl,
+// ao_bitmask.glsl): one program per
 // estimator and layer count (sao_program_table), picked by the settings.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
@@ -81,9 +82,9 @@ public:
                           .intensity = settings.intensity,
                           .q = frame.value("depth_pyramid.q"),
                           .max_mip = frame.integer("depth_pyramid.max_level"),
-                          .unused1 = 0,
+                          .slices = settings.slices,
                           .thickness = settings.thickness,
-                          .unused0 = 0.0f});
+                          .steps = settings.steps});
         glUseProgram(program);
         draw_fullscreen_triangle(frame.empty_vertex_array);
         frame.publish("ao.raw", visibility_.get());

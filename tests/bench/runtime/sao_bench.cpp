@@ -9,6 +9,8 @@
 // steps (shared_enums.h) do not follow the tap count. --against M adds a
 // third renderer, two layers with estimator M, to the same alternation, and
 // the ratio of the two estimators' SAO passes (one run, frame by frame).
+// --ao-slices / --ao-steps set the slice estimators' (gtao, bitmask) counts,
+// which the tap count does not change either.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -38,6 +40,13 @@ int main(int argc, char** argv) {
     app.add_option("--against", against_name,
                    "Also time this estimator (two layers) in the same alternation, and print the "
                    "ratio of the SAO passes");
+    deepgi::AoSettings defaults;
+    int slices = defaults.slices;
+    int steps = defaults.steps;
+    app.add_option("--ao-slices", slices, "gtao and bitmask: slices per pixel")
+        ->capture_default_str();
+    app.add_option("--ao-steps", steps, "gtao and bitmask: samples per slice side")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     return deepgi::bench::run("sao_bench", [&] {
@@ -46,7 +55,15 @@ int main(int argc, char** argv) {
             if (n < 1 || n > 1024)
                 throw deepgi::InputError(fmt::format("--taps {} is out of range (1 to 1024)", n));
         }
+        if (slices < 1 || slices > deepgi::limits::max_ao_slices)
+            throw deepgi::InputError(fmt::format("--ao-slices {} is out of range (1 to {})", slices,
+                                                 deepgi::limits::max_ao_slices));
+        if (steps < 1 || steps > deepgi::limits::max_ao_steps)
+            throw deepgi::InputError(fmt::format("--ao-steps {} is out of range (1 to {})", steps,
+                                                 deepgi::limits::max_ao_steps));
         deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
+        settings.ao.slices = slices;
+        settings.ao.steps = steps;
         settings.ao.method = deepgi::parse_ao_method("--ao-method", method_name);
         settings.ao.bias = deepgi::default_ao_bias(settings.ao.method);
         deepgi::RenderSettings one_layer = settings;
@@ -97,7 +114,10 @@ int main(int argc, char** argv) {
                 if (measured.empty()) measured = deepgi::bench::measured_on(two, options);
             }
         }
-        fmt::print("\n{}, method {}\n", measured, method_name);
+        fmt::print("\n{}, method {}", measured, method_name);
+        if (deepgi::ao_method_marches_slices(settings.ao.method))
+            fmt::print(", {} slices x {} steps", slices, steps);
+        fmt::print("\n");
         return 0;
     });
 }
