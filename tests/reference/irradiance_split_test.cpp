@@ -6,6 +6,8 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 
+#include "quad_scene.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/constants.hpp>
@@ -17,20 +19,7 @@
 
 namespace {
 
-// One quad p0 p1 p2 p3, counter-clockwise seen from the side it faces, with
-// its own material.
-void add_quad(deepgi::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3,
-              glm::vec3 albedo, glm::vec3 emissive) {
-    deepgi::Material material;
-    material.base_colour = glm::vec4(albedo, 1.0f);
-    material.emissive = emissive;
-    scene.batches.push_back({std::uint32_t(scene.indices.size()), 6u, int(scene.materials.size())});
-    scene.materials.push_back(material);
-    const auto base = std::uint32_t(scene.vertices.size());
-    const glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    for (glm::vec3 p : {p0, p1, p2, p3}) scene.vertices.push_back({p, n, {0, 0}});
-    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + i);
-}
+using deepgi::test::add_quad;
 
 glm::dvec3 sum(const deepgi::IrradianceSample& s) {
     return s.by_layer[0] + s.by_layer[1] + s.by_layer[2];

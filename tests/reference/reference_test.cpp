@@ -4,6 +4,8 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 
+#include "quad_scene.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -19,13 +21,7 @@
 
 namespace {
 
-// One quad p0 p1 p2 p3, counter-clockwise seen from the side it faces.
-void add_quad(deepgi::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3) {
-    const auto base = std::uint32_t(scene.vertices.size());
-    const glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    for (glm::vec3 p : {p0, p1, p2, p3}) scene.vertices.push_back({p, n, {0, 0}});
-    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + i);
-}
+using deepgi::test::add_quad;
 
 // The floor y = 0, facing +y, L metres each way.
 void add_floor(deepgi::Scene& scene, float l) {
@@ -365,17 +361,6 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
 
 namespace {
 
-// The quad p0..p3 drawn with `material`, which is appended to the scene.
-void add_quad_with(deepgi::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3,
-                   glm::vec3 albedo, glm::vec3 emissive) {
-    deepgi::Material material;
-    material.base_colour = glm::vec4(albedo, 1.0f);
-    material.emissive = emissive;
-    scene.batches.push_back({std::uint32_t(scene.indices.size()), 6u, int(scene.materials.size())});
-    scene.materials.push_back(material);
-    add_quad(scene, p0, p1, p2, p3);
-}
-
 // Irradiance budget for the closed-form cases: enough rays for a standard
 // error of 3% of E or less, so a 5-sigma margin still catches a wrong factor.
 deepgi::IrradianceRayBudget exact_budget() {
@@ -436,10 +421,10 @@ TEST_CASE("reference: a lit wall onto a floor matches the analytic form factor",
     // its radiance is rho / pi * intensity * colour with a cosine of 1.
     for (const bool lit : {false, true}) {
         deepgi::Scene scene;
-        add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50},
-                      glm::vec3(0.5f), glm::vec3(0.0f));
-        add_quad_with(scene, {x2, 0, zw}, {x1, 0, zw}, {x1, b, zw}, {x2, b, zw},
-                      lit ? rho : glm::vec3(0.0f), lit ? glm::vec3(0.0f) : emitted);
+        add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.5f),
+                 glm::vec3(0.0f));
+        add_quad(scene, {x2, 0, zw}, {x1, 0, zw}, {x1, b, zw}, {x2, b, zw},
+                 lit ? rho : glm::vec3(0.0f), lit ? glm::vec3(0.0f) : emitted);
         scene.key_light.kind = deepgi::LightKind::directional;
         scene.key_light.direction = {0, 0, 1};
         scene.key_light.colour = glm::vec3(1.0f);
@@ -470,10 +455,10 @@ TEST_CASE("reference: an emitting plane facing the point gives pi L (1 - (h/r)^2
     for (double ratio : {0.1, 0.5, 0.9, 1.2}) {
         const float h = float(ratio) * radius;
         deepgi::Scene scene;
-        add_quad_with(scene, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100},
-                      glm::vec3(0.5f), glm::vec3(0.0f));
-        add_quad_with(scene, {-100, h, -100}, {100, h, -100}, {100, h, 100}, {-100, h, 100},
-                      glm::vec3(0.0f), emitted);
+        add_quad(scene, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100},
+                 glm::vec3(0.5f), glm::vec3(0.0f));
+        add_quad(scene, {-100, h, -100}, {100, h, -100}, {100, h, 100}, {-100, h, 100},
+                 glm::vec3(0.0f), emitted);
         const deepgi::RayScene rays(scene);
         const auto s = deepgi::irradiance_at(rays, {0.1f, 0.0f, -0.2f}, {0, 1, 0}, radius,
                                              exact_budget(), 99u);
@@ -490,12 +475,11 @@ TEST_CASE("reference: an emitting plane facing the point gives pi L (1 - (h/r)^2
 TEST_CASE("reference: an open lit floor receives no irradiance, nor does the back of an emitter",
           "[reference]") {
     deepgi::Scene scene;
-    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.9f),
-                  glm::vec3(0.0f));
+    add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.9f),
+             glm::vec3(0.0f));
     // An emitting wall that faces away from the points in front of it (+z),
     // which sit at z < 1: the gather's facing test drops it, so must we.
-    add_quad_with(scene, {-1, 0, 1}, {1, 0, 1}, {1, 1, 1}, {-1, 1, 1}, glm::vec3(0.9f),
-                  glm::vec3(5.0f));
+    add_quad(scene, {-1, 0, 1}, {1, 0, 1}, {1, 1, 1}, {-1, 1, 1}, glm::vec3(0.9f), glm::vec3(5.0f));
     scene.key_light.kind = deepgi::LightKind::directional;
     scene.key_light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
     const deepgi::RayScene rays(scene);
@@ -524,12 +508,11 @@ TEST_CASE("reference: the key light's spot cone, falloff and shadow", "[referenc
     const float h = 2.0f;
     const glm::vec3 rho(0.6f, 0.5f, 0.4f);
     deepgi::Scene scene;
-    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, rho,
-                  glm::vec3(0.0f));
+    add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, rho, glm::vec3(0.0f));
     // A 20 cm blocker plate at height 1 over the origin: off the light paths
     // of the first spot position, right under the second.
-    add_quad_with(scene, {-0.1f, 1, 0.1f}, {0.1f, 1, 0.1f}, {0.1f, 1, -0.1f}, {-0.1f, 1, -0.1f},
-                  glm::vec3(0.5f), glm::vec3(0.0f));
+    add_quad(scene, {-0.1f, 1, 0.1f}, {0.1f, 1, 0.1f}, {0.1f, 1, -0.1f}, {-0.1f, 1, -0.1f},
+             glm::vec3(0.5f), glm::vec3(0.0f));
     scene.key_light.kind = deepgi::LightKind::spot;
     scene.key_light.position = {3.0f, h, 0.0f};
     scene.key_light.direction = {0, -1, 0};
@@ -575,10 +558,10 @@ TEST_CASE("reference: the key light's spot cone, falloff and shadow", "[referenc
 
 TEST_CASE("reference: irradiance images do not depend on the thread count", "[reference]") {
     deepgi::Scene scene;
-    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.7f),
-                  glm::vec3(0.0f));
-    add_quad_with(scene, {0, 0, 50}, {0, 0, -50}, {0, 5, -50}, {0, 5, 50},
-                  glm::vec3(0.8f, 0.2f, 0.2f), glm::vec3(0.0f));
+    add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.7f),
+             glm::vec3(0.0f));
+    add_quad(scene, {0, 0, 50}, {0, 0, -50}, {0, 5, -50}, {0, 5, 50}, glm::vec3(0.8f, 0.2f, 0.2f),
+             glm::vec3(0.0f));
     scene.key_light.kind = deepgi::LightKind::directional;
     scene.key_light.direction = glm::normalize(glm::vec3(-1.0f, -1.0f, 0.3f));
     const deepgi::RayScene rays(scene);
@@ -615,9 +598,9 @@ namespace {
 // over the origin and facing down onto the floor y = 0, with no key light.
 deepgi::Scene square_emitter_over_floor(float a, float h, glm::vec3 emitted) {
     deepgi::Scene scene;
-    add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.5f),
-                  glm::vec3(0.0f));
-    add_quad_with(scene, {-a, h, -a}, {a, h, -a}, {a, h, a}, {-a, h, a}, glm::vec3(0.0f), emitted);
+    add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.5f),
+             glm::vec3(0.0f));
+    add_quad(scene, {-a, h, -a}, {a, h, -a}, {a, h, a}, {-a, h, a}, glm::vec3(0.0f), emitted);
     scene.key_light.intensity = 0.0f;
     return scene;
 }
@@ -789,8 +772,8 @@ TEST_CASE("reference: the radius window and shadows cut emitter samples", "[refe
     require_within_error(s, glm::pi<double>() * (1.0 - ratio * ratio) * glm::dvec3(emitted));
 
     deepgi::Scene blocked = square_emitter_over_floor(a, h, emitted);
-    add_quad_with(blocked, {-0.3f, 0.25f, 0.3f}, {0.3f, 0.25f, 0.3f}, {0.3f, 0.25f, -0.3f},
-                  {-0.3f, 0.25f, -0.3f}, glm::vec3(0.5f), glm::vec3(0.0f));
+    add_quad(blocked, {-0.3f, 0.25f, 0.3f}, {0.3f, 0.25f, 0.3f}, {0.3f, 0.25f, -0.3f},
+             {-0.3f, 0.25f, -0.3f}, glm::vec3(0.5f), glm::vec3(0.0f));
     const deepgi::RayScene shadowed(blocked);
     const auto dark = deepgi::irradiance_at(shadowed, x, {0, 1, 0}, 2.0f, budget, 5u);
     REQUIRE(dark.irradiance == glm::dvec3(0.0));
@@ -828,7 +811,7 @@ namespace {
 // under a key light at height H straight above its centre.
 deepgi::Scene lit_square(deepgi::LightKind kind, float a, float h, glm::vec3 rho) {
     deepgi::Scene scene;
-    add_quad_with(scene, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, rho, glm::vec3(0.0f));
+    add_quad(scene, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, rho, glm::vec3(0.0f));
     scene.key_light.kind = kind;
     scene.key_light.position = {0.0f, h, 0.0f};
     scene.key_light.direction = {0, -1, 0};
@@ -941,16 +924,15 @@ TEST_CASE("reference: irradiance's standard error matches the spread of E over s
     const glm::dvec3 wall_radiance = glm::dvec3(rho) / pi * 3.0;
     for (const bool with_emitter : {false, true}) {
         deepgi::Scene scene;
-        add_quad_with(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50},
-                      glm::vec3(0.5f), glm::vec3(0.0f));
-        add_quad_with(scene, {x2, 0, zw}, {x1, 0, zw}, {x1, b, zw}, {x2, b, zw}, rho,
-                      glm::vec3(0.0f));
+        add_quad(scene, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, {-50, 0, -50}, glm::vec3(0.5f),
+                 glm::vec3(0.0f));
+        add_quad(scene, {x2, 0, zw}, {x1, 0, zw}, {x1, b, zw}, {x2, b, zw}, rho, glm::vec3(0.0f));
         // Centred over X, facing down, above the wall's top edge so that the
         // key light (along +z) leaves the wall unshadowed.
         const float sx = float(x0), sz = float(zw - c);
         if (with_emitter)
-            add_quad_with(scene, {sx - a, h, sz - a}, {sx + a, h, sz - a}, {sx + a, h, sz + a},
-                          {sx - a, h, sz + a}, glm::vec3(0.0f), emitted);
+            add_quad(scene, {sx - a, h, sz - a}, {sx + a, h, sz - a}, {sx + a, h, sz + a},
+                     {sx - a, h, sz + a}, glm::vec3(0.0f), emitted);
         scene.key_light.kind = deepgi::LightKind::directional;
         scene.key_light.direction = {0, 0, 1};
         scene.key_light.colour = glm::vec3(1.0f);
