@@ -8,23 +8,8 @@ namespace deepgi::test {
 
 namespace {
 
-// The shader's own hash source, as sao_reference.cpp includes it.
-namespace shader {
-using uint = std::uint32_t;
-#define DEEPGI_SHARED_FUNCTION inline
-#include "pixel_rotation_hash.h"
-#undef DEEPGI_SHARED_FUNCTION
-}  // namespace shader
-
 constexpr float pi = 3.14159265f;
 constexpr int sectors = 32;
-
-// camera_position_at() of gbuffer_encoding.glsl: the pixel centre at linear depth z.
-glm::vec3 camera_position(float cx, float cy, float depth, const SaoInputs& inputs) {
-    const float ndc_x = cx * (1.0f / float(inputs.pyramid[0].width)) * 2.0f - 1.0f;
-    const float ndc_y = cy * (1.0f / float(inputs.pyramid[0].height)) * 2.0f - 1.0f;
-    return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
-}
 
 // G(h) = int_0^h cos(theta - n) |sin theta| dtheta, integrated by hand:
 // cos(theta - n) sin(theta) = (sin(2 theta - n) + sin(n)) / 2.
@@ -85,7 +70,7 @@ float pixel_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float
     const float footprint_bias =
         settings.bias + 0.5f * (2.0f * inputs.ray_scale.y * depth / float(base.height));
     const std::uint32_t hash = pixel_rotation_hash(std::uint32_t(x), std::uint32_t(y));
-    const float jitter = float(shader::avalanche32(hash ^ 0x2c1b3c6du) >> 8) * (1.0f / 16777216.0f);
+    const float jitter = float(avalanche32(hash ^ 0x2c1b3c6du) >> 8) * (1.0f / 16777216.0f);
     const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
     const float c = std::cos(phi), sn = std::sin(phi);
     float visible = 0.0f, open = 0.0f;

@@ -18,16 +18,6 @@ using uint = std::uint32_t;
 #undef DEEPGI_SHARED_FUNCTION
 }  // namespace shader
 
-// Pixel centre (x + 1/2, y + 1/2) at linear depth z, as camera_position_at() in
-// gbuffer_encoding.glsl defines camera space: x, y from the NDC of the centre.
-glm::vec3 camera_position(float centre_x, float centre_y, float depth, const SaoInputs& inputs) {
-    const float width = float(inputs.pyramid[0].width);
-    const float height = float(inputs.pyramid[0].height);
-    const float ndc_x = centre_x * (1.0f / width) * 2.0f - 1.0f;
-    const float ndc_y = centre_y * (1.0f / height) * 2.0f - 1.0f;
-    return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
-}
-
 // The march (sao.frag, march_visibility): AV = 1 - mean f(d) over cosine-
 // weighted rays, each marched until it is first inside the solid behind a
 // stored surface: to its back face (at least two steps deep), or `thickness`
@@ -255,6 +245,18 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
 }
 
 }  // namespace
+
+glm::vec3 camera_position(float centre_x, float centre_y, float depth, const SaoInputs& inputs) {
+    const float width = float(inputs.pyramid[0].width);
+    const float height = float(inputs.pyramid[0].height);
+    const float ndc_x = centre_x * (1.0f / width) * 2.0f - 1.0f;
+    const float ndc_y = centre_y * (1.0f / height) * 2.0f - 1.0f;
+    return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
+}
+
+std::uint32_t avalanche32(std::uint32_t x) {
+    return shader::avalanche32(x);
+}
 
 std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) {
     return shader::pixel_rotation_hash_xy(x, y);

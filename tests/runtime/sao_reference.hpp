@@ -29,6 +29,9 @@ namespace deepgi::test {
 // The per-pixel rotation of pixel_rotation.glsl, in 32-bit unsigned arithmetic.
 std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y);
 float pixel_rotation_angle(std::uint32_t x, std::uint32_t y);
+// The per-pixel salted hashes' mixer (pixel_rotation_hash.h), for the step
+// offsets and jitters the shaders derive from the pixel hash.
+std::uint32_t avalanche32(std::uint32_t x);
 
 // What the pass reads, as read back from the GPU.
 struct SaoInputs {
@@ -51,6 +54,11 @@ struct SaoInputs {
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
                                         const AoSettings& settings);
+
+// Pixel centre (x + 1/2, y + 1/2) at linear depth z, as camera_position_at()
+// in gbuffer_encoding.glsl defines camera space: x, y from the NDC of the
+// centre of the pyramid's level-0 grid.
+glm::vec3 camera_position(float centre_x, float centre_y, float depth, const SaoInputs& inputs);
 
 // Level m + 1 of the pyramid from level m by the rotated-grid rule.
 FloatImage reference_pyramid_level(const FloatImage& finer);
