@@ -1,5 +1,5 @@
 // What a settings change costs each pass: the settings rows' effects, by
-// owner (runtime/src/settings.cpp), unless the pass says more itself.
+// owner (runtime/src/settings_rows.cpp), unless the pass says more itself.
 #include "deepgi/settings.hpp"
 #include "pass.hpp"
 
