@@ -201,6 +201,11 @@ void take_screenshot(WindowState& state, const fs::path& folder) {
 }
 
 void handle_action(WindowState& state, KeyAction action) {
+    // What the last frame used, for the keys that step from an `auto` value:
+    // read on a key press only (the exposure is a 32-byte read-back), not
+    // every frame.
+    state.keys.exposure_in_use = state.renderer->exposure_in_use();
+    state.keys.in_use = state.renderer->settings_in_use();
     if (apply_key_action(action, state.settings, state.keys)) {
         set_active_section(state, section_of_action(action, state.settings));
         return;
@@ -396,10 +401,6 @@ int run_interactive(const WindowOptions& options, const RenderSettings& initial_
             state.renderer->render(shown, state.fly.camera);
             state.rendered_camera = shown;
             state.delayed_camera = state.fly.camera;
-            // 32 bytes read after the frame (Renderer::frame_statistics), for
-            // the panel and the exposure keys.
-            state.keys.exposure_in_use = state.renderer->exposure_in_use();
-            state.keys.in_use = state.renderer->settings_in_use();
 
             // Show the output texture: blit it onto the window's framebuffer.
             gl::Framebuffer source = gl::create_framebuffer();

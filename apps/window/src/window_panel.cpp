@@ -232,14 +232,16 @@ void draw_panel(WindowState& state, RenderSettings& wanted) {
         enum_combo("timing", wanted.timing);
         // The exposure in use is measured, not resolved: the panel shows it
         // (greyed under auto) and unticking auto keeps it.
+        // One read-back of the last frame's statistics, while this section is open.
+        const FrameStatistics statistics = state.renderer->frame_statistics();
         RenderSettings frame_in_use = in_use;
-        frame_in_use.exposure = state.keys.exposure_in_use;
+        frame_in_use.exposure = statistics.exposure;
         numeric_sliders("frame", wanted, frame_in_use);
-        ImGui::Text("exposure in use %.4g (log-average luminance %.4g)", state.keys.exposure_in_use,
-                    state.renderer->frame_statistics().log_average_luminance);
+        ImGui::Text("exposure in use %.4g (log-average luminance %.4g)", statistics.exposure,
+                    statistics.log_average_luminance);
         if (wanted.view == DebugView::depth_layer0 || wanted.view == DebugView::depth_layer1) {
             const int layer = wanted.view == DebugView::depth_layer0 ? 0 : 1;
-            const DepthRange range = state.renderer->depth_ranges()[std::size_t(layer)];
+            const DepthRange range = statistics.depth_ranges[std::size_t(layer)];
             ImGui::Text("depth view: layer %d, %.4g (white) to %.4g (dark grey)", layer,
                         range.near_depth, range.far_depth);
         }
