@@ -1,6 +1,6 @@
 // deepgi_irradiance_region DUMP_DIR REFERENCE_DIR SCENE [--facing X,Y,Z] [--min-cos C]
 //                          [--box X0,X1,Y0,Y1,Z0,Z1] [--toward R,G,B] [--guard-band F]
-//                          [--sky-rays N]
+//                          [--sky-rays N] [--layers L]
 // How much of its true indirect light a region of the image gets: over the
 // viewport pixels where the traced and the dumped layer-0 depth agree, that
 // emit nothing, whose world normal lies within acos(C) of the direction
@@ -11,11 +11,17 @@
 //   indirect   compose's radiance minus direct light and emission, over
 //              albedo / pi (so E + fill, times the ambient visibility),
 // each over the sum of the reference's E over the same pixels and channels
-// (docs/radiosity.md, "The cornell ceiling"). With --toward, also the mean
-// tint of E toward that colour, (e - 1/3) . (b - 1/3) / |b - 1/3| with e and
-// b chromaticities (RGB over their sum), for the renderer's blurred and
-// filtered E and the reference's E, E0 and E0 + E1 (docs/radiosity.md,
-// "Atrium's blue banner"). DUMP_DIR and REFERENCE_DIR are
+// (docs/radiosity.md, "The cornell ceiling"); then the MAE and bias of E and
+// of E + fill against that E, of E against the visible truth (E0 + E1, or
+// E0 with --layers 1), and of E and E + fill against E + E_sky: the truth
+// with the environment's irradiance through the gaps of the whole scene,
+// which the reference's E leaves out and compose's fill also stands in for
+// (traced here, --sky-rays cosine-weighted directions per pixel;
+// "What recovers the missing share"). --min-cos -2 takes every pixel. With
+// --toward, also the mean tint of E toward that colour, (e - 1/3) . (b -
+// 1/3) / |b - 1/3| with e and b chromaticities (RGB over their sum), for the
+// renderer's blurred and filtered E and the reference's E, E0, E0 + E1 and
+// E1 (docs/radiosity.md, "Atrium's blue banner"). DUMP_DIR and REFERENCE_DIR are
 // deepgi --headless --dump and deepgi reference of the same scene and size.
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"
@@ -42,7 +48,7 @@ int run(int argc, char** argv) {
         fmt::print(stderr,
                    "usage: deepgi_irradiance_region DUMP_DIR REFERENCE_DIR SCENE "
                    "[--facing X,Y,Z] [--min-cos C] [--box X0,X1,Y0,Y1,Z0,Z1] [--toward R,G,B] "
-                   "[--guard-band F] [--sky-rays N]\n");
+                   "[--guard-band F] [--sky-rays N] [--layers L]\n");
         return 2;
     }
     const std::filesystem::path dump = argv[1], reference = argv[2];
