@@ -71,6 +71,8 @@ ReflectionRow compare_reflections(const ReflectionImages& images, int guard) {
     long long mirrors = 0, same = 0, missed = 0, other = 0, only = 0;
     double truth_sum = 0.0, error_sum = 0.0, bias_sum = 0.0;
     double same_truth = 0.0, same_error = 0.0, same_bias = 0.0;
+    long long chained = 0;
+    double chain_truth = 0.0, chain_error = 0.0, chain_bias = 0.0;
     const FloatImage& hit = images.hit;
     for (int y = guard; y < truth.height - guard; ++y)
         for (int x = guard; x < truth.width - guard; ++x) {
@@ -97,8 +99,17 @@ ReflectionRow compare_reflections(const ReflectionImages& images, int guard) {
                 ++only;
             else
                 ++other;
+            const bool chain =
+                images.meets_mirror &&
+                (*images.meets_mirror)[std::size_t(y) * std::size_t(truth.width) + std::size_t(x)];
+            chained += chain;
             for (int c = 0; c < 3; ++c) {
                 const double t = truth.at(x, y, c), e = images.filtered.at(x, y, c);
+                if (chain) {
+                    chain_truth += t;
+                    chain_error += std::abs(e - t);
+                    chain_bias += e - t;
+                }
                 truth_sum += t;
                 error_sum += std::abs(e - t);
                 bias_sum += e - t;
@@ -121,6 +132,9 @@ ReflectionRow compare_reflections(const ReflectionImages& images, int guard) {
     row.rel_bias = truth_sum > 0.0 ? bias_sum / truth_sum : nan;
     row.same_surface_rel_mae = same_truth > 0.0 ? same_error / same_truth : nan;
     row.same_surface_rel_bias = same_truth > 0.0 ? same_bias / same_truth : nan;
+    row.meets_mirror = double(chained) / n;
+    row.meets_mirror_rel_mae = chain_truth > 0.0 ? chain_error / chain_truth : nan;
+    row.meets_mirror_rel_bias = chain_truth > 0.0 ? chain_bias / chain_truth : nan;
     return row;
 }
 
@@ -186,6 +200,13 @@ std::vector<ReflectionRow> measure_reflection_rows(
                 if (timing.pass == "reflection") c.milliseconds.push_back(timing.milliseconds);
         }
 
+    // Where the traced ray's first surface is itself a mirror.
+    std::vector<std::uint8_t> meets_mirror(truth.reflection_hit.pixels.size() / 3, 0);
+    for (std::size_t i = 0; i < meets_mirror.size(); ++i) {
+        const float triangle = truth.reflection_hit.pixels[3 * i + 1];
+        meets_mirror[i] =
+            triangle >= 0.0f && ray_scene.mirror(unsigned(triangle), settings.mirror_roughness);
+    }
     const int guard = frame_layout(settings).guard;
     std::vector<ReflectionRow> rows;
     for (Configuration& c : configurations) {
@@ -195,7 +216,7 @@ std::vector<ReflectionRow> measure_reflection_rows(
         const FloatImage filtered = r.read_pass_output("reflection-temporal");
         ReflectionRow row = compare_reflections(
             {depth, hit, filtered, truth.depth_layer0, truth.reflection_radiance,
-             truth.reflection_hit, truth.surface_layers},
+             truth.reflection_hit, truth.surface_layers, &meets_mirror},
             guard);
         if (row.mirror_pixels == 0) {
             say(fmt::format("{}: no mirror pixels in view, no mirror rows", scene_name));
@@ -223,18 +244,20 @@ std::string format_reflection_csv(const std::vector<ReflectionRow>& rows) {
     std::string text =
         "scene,layers,steps,frames,device,mirror_pixels,same_surface,renderer_missed,"
         "other_surface,renderer_only,rel_mae,rel_bias,same_surface_rel_mae,"
-        "same_surface_rel_bias,reflection_ms\n";
+        "same_surface_rel_bias,meets_mirror,meets_mirror_rel_mae,meets_mirror_rel_bias,"
+        "reflection_ms\n";
     auto number = [](double value) {
         return std::isfinite(value) ? fmt::format("{}", value) : std::string();
     };
     for (const ReflectionRow& row : rows)
-        text +=
-            fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(row.scene),
-                        row.layers, row.steps, row.frames, csv_field(row.device), row.mirror_pixels,
-                        number(row.same_surface), number(row.renderer_missed),
-                        number(row.other_surface), number(row.renderer_only), number(row.rel_mae),
-                        number(row.rel_bias), number(row.same_surface_rel_mae),
-                        number(row.same_surface_rel_bias), number(row.reflection_ms));
+        text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                            csv_field(row.scene), row.layers, row.steps, row.frames,
+                            csv_field(row.device), row.mirror_pixels, number(row.same_surface),
+                            number(row.renderer_missed), number(row.other_surface),
+                            number(row.renderer_only), number(row.rel_mae), number(row.rel_bias),
+                            number(row.same_surface_rel_mae), number(row.same_surface_rel_bias),
+                            number(row.meets_mirror), number(row.meets_mirror_rel_mae),
+                            number(row.meets_mirror_rel_bias), number(row.reflection_ms));
     return text;
 }
 

@@ -66,6 +66,10 @@ TEST_CASE("report: mirror rows for scenes with mirrors, shares that add up and a
              {row.same_surface, row.renderer_missed, row.other_surface, row.renderer_only})
             CHECK(std::abs(share * double(row.mirror_pixels) -
                            std::round(share * double(row.mirror_pixels))) < 1e-6);
+        // A floor mirror's reflected rays rise away from it and gallery has
+        // no other mirror: none meets one.
+        CHECK(row.meets_mirror == 0.0);
+        CHECK(std::isnan(row.meets_mirror_rel_mae));
         CHECK(std::isfinite(row.rel_mae));
         CHECK(row.rel_mae >= 0.0);
         CHECK(std::isfinite(row.rel_bias));

@@ -52,6 +52,12 @@ struct ReflectionRow {
     double rel_bias = 0.0;
     double same_surface_rel_mae = 0.0;
     double same_surface_rel_bias = 0.0;
+    // The share of mirror_pixels whose traced ray meets another mirror first,
+    // and the filtered radiance's relative MAE and bias over those pixels
+    // (NaN when there are none).
+    double meets_mirror = 0.0;
+    double meets_mirror_rel_mae = 0.0;
+    double meets_mirror_rel_bias = 0.0;
     double reflection_ms = 0.0;  // median of the timed frames
 };
 
@@ -69,6 +75,9 @@ struct ReflectionImages {
     const FloatImage& truth;         // reference reflection_radiance
     const FloatImage& truth_hit;     // reference reflection_hit
     const FloatImage& surfaces;      // reference surface_layers
+    // Per pixel, nonzero where the traced ray's first surface is a mirror;
+    // may be null (no pixel counts).
+    const std::vector<std::uint8_t>* meets_mirror = nullptr;
 };
 ReflectionRow compare_reflections(const ReflectionImages& images, int guard);
 
@@ -88,7 +97,8 @@ std::vector<ReflectionRow> measure_reflection_rows(
 
 // scene,layers,steps,frames,device,mirror_pixels,same_surface,renderer_missed,
 // other_surface,renderer_only,rel_mae,rel_bias,same_surface_rel_mae,
-// same_surface_rel_bias,reflection_ms
+// same_surface_rel_bias,meets_mirror,meets_mirror_rel_mae,meets_mirror_rel_bias,
+// reflection_ms
 std::string format_reflection_csv(const std::vector<ReflectionRow>& rows);
 
 // Writes DIR/reflections.csv, or removes it when the mirror rows are off, so
