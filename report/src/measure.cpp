@@ -551,12 +551,17 @@ ReportResult run_report(const ReportOptions& options) {
                 }
             }
         }
+        for (ReflectionRow& row : measure_reflection_rows(
+                 scene_name, scene, settings, options.reflections, options.layers, options.rays,
+                 options.seed, options.threads, options.warmup, options.log))
+            result.reflections.push_back(std::move(row));
     }
 
     measure_side_tables(options, result, log, step);
 
     result.info.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_reflection_table(options.output, options.reflections.enabled, result.reflections);
     write_text(options.output / "report.csv", format_csv(result.rows));
     write_text(options.output / "report.json",
                format_json(result.rows, result.info, result.stability, result.float_choices));
