@@ -135,8 +135,9 @@ inline constexpr int max_ao_steps = 32;  // gtao and bitmask, per slice side (ao
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_steps = 1024;
-// temporal-offset: every value is exact in the float the settings rows carry.
-inline constexpr int max_temporal_offset = 1 << 24;
+// temporal-offset: every value, and the next one past it, is exact in the
+// float the settings rows carry.
+inline constexpr int max_temporal_offset = 1 << 20;
 }  // namespace limits
 
 // The bias each estimator was derived or tuned with. Solid-angle needs none:
