@@ -224,6 +224,12 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None):
             # error, which alone makes the correlation positive; the question
             # that matters is whether D* ranks the good patterns.
             good = [p for p in patterns if p != "tau1"]
+            if len(good) < len(patterns) and len(good) < MIN_PATTERNS and average is not None:
+                near_untested.append(what.split(" (")[0])
+                text += (f" tau = 1 is far worse than the others in both D* and error, so it "
+                         f"alone can make this correlation positive; with {len(good)} other "
+                         f"pattern{'s' if len(good) != 1 else ''} the run cannot say whether "
+                         "D* ranks the good ones.")
             if MIN_PATTERNS <= len(good) < len(patterns):
                 good_parts, good_average, within = correlations(good)
                 if good_average is not None:
@@ -426,8 +432,9 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None):
                            f"ray-traced truth beyond the noise ({fmt(decision.means['one'])} "
                            f"against {fmt(decision.means['two'])} at N = {n})")
     if near_untested:
-        against.append("among the near-optimal patterns the " + " and the ".join(near_untested)
-                       + " lie within the noise, so this run cannot say whether D* ranks them")
+        against.append("this run cannot say whether D* ranks the near-optimal patterns by "
+                       + " or by ".join(near_untested) + " (too few of them, or their errors "
+                       "lie within the noise)")
     if untested or not verdicts:
         against.append("this run cannot test the paper's central claim, that lower D* gives "
                        "lower error" + (f" ({untested})" if untested else
