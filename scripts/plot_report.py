@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Figures and summary.md for a `deepgi report` output directory.
 
-    scripts/plot_report.py DIR
+    scripts/plot_report.py [--summary-only] DIR
 
 Reads DIR/report.csv, DIR/report.json, DIR/discrepancy.csv and
 DIR/images/*.pfm (written by `deepgi report`), writes DIR/error_vs_ms.png,
 DIR/discrepancy.png, DIR/discrepancy_vs_error.png, DIR/images/<scene>.png
 (truth, then each AO method's estimate and signed error) and DIR/summary.md.
 Every statement in the summary is computed from the CSV, so re-running the
-report rewrites it.
+report rewrites it. --summary-only writes summary.md alone (no figures; it
+needs no matplotlib).
 
 The rows of the first AO method in the CSV compare the tap patterns; the
 other methods' rows (the image pattern only) are set beside them in the
@@ -20,16 +21,19 @@ import json
 import os
 import sys
 
-from report_plots.data import STUDY_TAPS, Table, read_rows
+from report_plots.data import STUDY_TAPS, Table, read_discrepancy, read_rows
 from report_plots.figures import (plot_discrepancy, plot_discrepancy_vs_error, plot_error_vs_ms,
                                   plot_images)
 from report_plots.summary import summary
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: plot_report.py DIR")
-    directory = sys.argv[1]
+    arguments = sys.argv[1:]
+    summary_only = "--summary-only" in arguments
+    arguments = [a for a in arguments if a != "--summary-only"]
+    if len(arguments) != 1:
+        sys.exit("usage: plot_report.py [--summary-only] DIR")
+    directory = arguments[0]
     all_rows = read_rows(os.path.join(directory, "report.csv"))
     if not all_rows:
         sys.exit("plot_report: report.csv has no rows")
@@ -39,6 +43,10 @@ def main():
     others = [(m, Table([r for r in all_rows if r["ao_method"] == m])) for m in methods[1:]]
     with open(os.path.join(directory, "report.json")) as f:
         info = json.load(f)["info"]
+    if summary_only:
+        series = read_discrepancy(os.path.join(directory, "discrepancy.csv"))
+        summary(directory, rows, info, series, None, all_rows)
+        return
     try:
         import matplotlib
 

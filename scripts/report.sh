@@ -7,7 +7,9 @@
 # Extra flags override the defaults (CLI11 keeps the last value given).
 # --warmup 1 --frames 7: the 8 static frames after the cut that the
 # accumulated columns need anyway (1 + DEEPGI_TEMPORAL_CYCLE frames in all),
-# the last 7 of them timed.
+# the last 7 of them timed. --repeats 2: the run's own noise, without which
+# the summary ranks nothing. --stability --float-check: the extras that
+# docs/results.md shows, which `deepgi report` runs only when asked.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -18,7 +20,8 @@ trap 'rm -rf "$work"' EXIT INT TERM
 set -- --scenes ref-crease,ref-slab,ref-board,ref-bench,cornell,atrium,warehouse,gallery \
   --taps 4,8,11,16,32,64 --patterns optimal,tau1,golden,m2,m4,m8 --layers 1,2 \
   --ao-methods solid-angle,published,march \
-  --size 320x180 --rays 0 --frames 7 --warmup 1 "$@"
+  --size 320x180 --rays 0 --frames 7 --warmup 1 --repeats 2 \
+  --stability --float-check "$@"
 start=$(date +%s)
 "$build/apps/deepgi/deepgi" report "$@" --output "$work/report"
 seconds=$(( $(date +%s) - start ))

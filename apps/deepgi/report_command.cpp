@@ -29,7 +29,6 @@ struct CommandOptions {
     std::string output;
     bool plots = true;
     bool no_plots = false;
-    bool no_stability = false;
     bool no_reflections = false;
     std::string python = "/usr/bin/python3";
     std::string plot_script = DEEPGI_PLOT_REPORT_SCRIPT;
@@ -147,11 +146,18 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--image-taps", report.image_taps,
                    "Tap count of the per-scene truth/estimate images (nearest in --taps)")
         ->default_str(fmt::format("{} taps", report.image_taps));
-    app.add_flag("--no-stability", options.no_stability,
-                 "Skip the numerical hard cases (stability.csv)");
-    app.add_option("--float-max-n", report.float_max_n,
-                   "Exact against double tau search for n = 1..N (0: skip)")
-        ->default_str(fmt::format("n = {}", report.float_max_n));
+    app.add_option("--repeats", report.repeats,
+                   "Renders of every row, each with the temporal sequence started elsewhere; "
+                   "their spread is the run's noise, and no difference within it is ranked")
+        ->default_str(fmt::format("{} renders", report.repeats));
+    app.add_flag("--stability", report.stability,
+                 "Also render the numerical hard cases (stability.csv); off unless given");
+    app.add_flag("--float-check", report.float_check,
+                 "Also compare the exact tau search with a double-precision one "
+                 "(float_vs_exact.csv); off unless given");
+    auto* float_max_n =
+        app.add_option("--float-max-n", report.float_max_n, "With --float-check: compare n = 1..N")
+            ->default_str(fmt::format("n = {}", report.float_max_n));
     app.add_option("--reflection-steps", report.reflections.steps,
                    "Reflection step counts of the mirror rows, comma-separated")
         ->delimiter(',')
@@ -168,10 +174,11 @@ int run_report_command(int argc, char** argv) {
                    "The plotting script (scripts/plot_report.py of the source tree)");
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
-    report.stability = !options.no_stability;
     report.reflections.enabled = !options.no_reflections;
     options.plots = !options.no_plots;
     return run_reporting_errors("deepgi report", [&] {
+        if (float_max_n->count() > 0 && !report.float_check)
+            throw deepgi::InputError("--float-max-n applies only with --float-check");
         if (!ao_methods.empty()) {
             report.ao_methods.clear();
             for (const std::string& name : ao_methods)

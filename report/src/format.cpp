@@ -17,7 +17,7 @@ const std::vector<std::string>& timed_passes() {
 
 const std::vector<std::string>& value_columns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> names = {"discrepancy", "turns"};
+        std::vector<std::string> names = {"discrepancy", "turns", "temporal_offset"};
         for (const auto& pass : timed_passes()) names.push_back(pass + "_ms");
         for (const char* name : {
                  "conv_raw_mae",
@@ -119,11 +119,11 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
     text += fmt::format(
         "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
         "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
-        "\"image_pattern\":{},\"image_taps\":{},\"seconds\":{}",
+        "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"seconds\":{}",
         json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
-        json_string(info.image_pattern), info.image_taps, info.seconds);
+        json_string(info.image_pattern), info.image_taps, info.repeats, info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];

@@ -23,6 +23,8 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -215,6 +217,7 @@ StaticFrames run_static_frames(
 struct Measured {
     double discrepancy = 0.0;
     double turns = 0.0;
+    int temporal_offset = 0;   // the repeat's start in the temporal sequence
     bool gathers_taps = true;  // false: no converged AO to compare with
     ErrorStats conv_raw, conv_blur, ref_raw, ref_blur, rad_raw, rad_blur;
     std::optional<ErrorStats> rad_ref_raw, rad_ref_blur;
@@ -239,6 +242,7 @@ Row make_row(Row row, const Measured& m) {
     };
     add("discrepancy", m.discrepancy);
     add("turns", m.turns);
+    add("temporal_offset", double(m.temporal_offset));
     for (const auto& pass : timed_passes()) {
         const auto it = after.samples.find(pass);
         if (it == after.samples.end())
@@ -304,7 +308,7 @@ void measure_side_tables(const ReportOptions& options, ReportResult& result,
     } else {
         fs::remove(options.output / "stability.csv");
     }
-    if (options.float_max_n > 0) {
+    if (options.float_check) {
         step("float against exact search");
         const auto float_start = std::chrono::steady_clock::now();
         result.float_choices =
@@ -353,6 +357,12 @@ ReportResult run_report(const ReportOptions& options) {
                                           ? options.image_pattern
                                           : options.patterns.front();
     const int image_layers = *std::max_element(options.layers.begin(), options.layers.end());
+    // Every layer count, rendered options.repeats times (repeat_offset).
+    std::vector<std::pair<int, int>> layer_repeats;
+    for (int layers : options.layers) {
+        for (int repeat = 0; repeat < options.repeats; ++repeat)
+            layer_repeats.emplace_back(layers, repeat);
+    }
 
     fs::create_directories(options.output / "images");
     write_text(options.output / "discrepancy.csv", format_discrepancy_csv(options.patterns, 64));
@@ -370,10 +380,11 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.frames = options.frames;
     result.info.image_pattern = image_pattern;
     result.info.image_taps = image_taps;
+    result.info.repeats = options.repeats;
 
     // Progress: one step per scene, then the side tables that run.
-    const int steps = int(options.scenes.size()) + (options.stability ? 1 : 0) +
-                      (options.float_max_n > 0 ? 1 : 0);
+    const int steps =
+        int(options.scenes.size()) + (options.stability ? 1 : 0) + (options.float_check ? 1 : 0);
     int steps_done = 0;
     auto step = [&](const std::string& name) {
         if (options.progress) options.progress(steps_done, steps, name);
@@ -446,8 +457,11 @@ ReportResult run_report(const ReportOptions& options) {
                     const double discrepancy = spiral::discrepancy(n, turns.p, turns.m).value();
                     Renderer renderer(scene, method_settings, loader);
                     result.info.cpu_clock = renderer.timing_uses_cpu_clock();
-                    for (int layers : options.layers) {
-                        renderer.set_settings(with_layers(layers));
+                    for (const auto& [layers, repeat] : layer_repeats) {
+                        const int temporal_offset = repeat_offset(options, repeat);
+                        RenderSettings repeat_settings = with_layers(layers);
+                        repeat_settings.temporal_offset = temporal_offset;
+                        renderer.set_settings(repeat_settings);
                         // Errors from the first frame after a cut: no history in it.
                         renderer.render(camera, CameraMotion::cut);
                         const Frame frame = read_frame(renderer);
@@ -500,7 +514,8 @@ ReportResult run_report(const ReportOptions& options) {
                         const std::optional<ErrorStats> rad_ref_blur =
                             against_irradiance(frame.radiosity_blurred);
 
-                        if (pattern == image_pattern && n == image_taps && layers == image_layers) {
+                        if (pattern == image_pattern && n == image_taps && layers == image_layers &&
+                            repeat == 0) {
                             const std::string stem = file_stem(scene_name);
                             write_pfm(options.output / "images" / (stem + "-truth.pfm"),
                                       crop(truth.ambient_visibility, guard, agreed));
@@ -512,6 +527,7 @@ ReportResult run_report(const ReportOptions& options) {
                         Measured measured{
                             .discrepancy = discrepancy,
                             .turns = turns.value(),
+                            .temporal_offset = temporal_offset,
                             .gathers_taps = gathers_taps,
                             .conv_raw = conv_raw,
                             .conv_blur = conv_blur,
@@ -540,9 +556,9 @@ ReportResult run_report(const ReportOptions& options) {
                                                .values = {}},
                                            measured);
                         log(fmt::format(
-                            "{} {} {} n={} layers={}: sao {:.2f} ms, MAE vs converged {}, vs "
-                            "reference {:.4f} raw {:.4f} blurred",
-                            scene_name, method_name, pattern, n, layers,
+                            "{} {} {} n={} layers={} offset={}: sao {:.2f} ms, MAE vs its "
+                            "own converged {}, vs reference {:.4f} raw {:.4f} blurred",
+                            scene_name, method_name, pattern, n, layers, temporal_offset,
                             row.get("sao_ms").value_or(0.0),
                             gathers_taps ? fmt::format("{:.4f}", conv_raw.mae) : std::string("-"),
                             ref_raw.mae, ref_blur.mae));

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -56,9 +57,11 @@ void validate(const ReportOptions& options) {
     if (options.threads < 0 || options.threads > 1024)
         throw InputError(
             fmt::format("--threads {} must lie in [0, 1024] (0: all)", options.threads));
-    if (options.float_max_n < 0 || options.float_max_n > 4096)
+    if (options.repeats < 1 || options.repeats > 16)
+        throw InputError(fmt::format("--repeats {} is out of range (1 to 16)", options.repeats));
+    if (options.float_max_n < 1 || options.float_max_n > 4096)
         throw InputError(
-            fmt::format("--float-max-n {} is out of range (0 to 4096)", options.float_max_n));
+            fmt::format("--float-max-n {} is out of range (1 to 4096)", options.float_max_n));
     validate(options.reflections);
     if (options.output.empty()) throw InputError("report needs --output DIR");
     if (fs::exists(options.output) && !fs::is_directory(options.output))
@@ -71,6 +74,14 @@ void validate(const ReportOptions& options) {
     // Scenes last: loading a file can be slow, and a bad name is then found
     // before anything is rendered.
     for (const std::string& scene : options.scenes) (void)load_scene(scene);
+}
+
+int repeat_offset(const ReportOptions& options, int repeat) {
+    // 9: the static frames after a cut that the accumulated columns need
+    // (kAccumulatedFrames in measure.cpp).
+    // At the option limits (16 repeats, 2001 frames) this stays far below
+    // limits::max_temporal_offset.
+    return std::max(9, 1 + options.warmup + options.frames) * repeat;
 }
 
 }  // namespace deepgi::report

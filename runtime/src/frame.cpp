@@ -201,7 +201,10 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.radiosity_term = settings.radiosity.enabled ? 1 : 0;
     constants.environment_term = settings.environment ? 1 : 0;
     constants.reflection_term = reflections_traced(state.scene, settings) ? 1 : 0;
-    const glm::vec2 sample = temporal_sample(state.temporal_frame);
+    // temporal-offset starts the walk at another point: another realisation
+    // of every frame's rotation, for measuring run-to-run spread.
+    const glm::vec2 sample =
+        temporal_sample(state.temporal_frame + std::uint32_t(settings.temporal_offset));
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
     constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);

@@ -39,7 +39,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 29> numeric_table = {{
+const std::array<NumericSetting, 30> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -102,6 +102,20 @@ const std::array<NumericSetting, 29> numeric_table = {{
      .slider_min = 0.0f,
      .slider_max = 1.0f,
      DEEPGI_INT_FIELD(antialias)},
+    {.name = "temporal-offset",
+     .label = "temporal offset",
+     .group = "frame",
+     .owner = "frame",
+     .help = "Index of the temporal R2 sequence on the first frame after history is dropped "
+             "(0: the shipped sequence). Another value turns every gather's per-frame "
+             "rotation and march offsets to another realisation; the report repeats its rows "
+             "with it to measure its own run-to-run spread",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = float(limits::max_temporal_offset),
+     .slider_min = 0.0f,
+     .slider_max = 64.0f,
+     DEEPGI_INT_FIELD(temporal_offset)},
     {.name = "ao-radius",
      .label = "radius (m)",
      .group = "ao",

@@ -100,17 +100,29 @@ def fmt(value, digits=4):
 
 
 class Table:
-    """Means of a column over scenes (and layers, unless given)."""
+    """Means of a column over scenes, layers and repeats (each unless given)."""
 
     def __init__(self, rows):
         self.rows = rows
 
+    def _matching(self, pattern, taps, layers, scene):
+        return [r for r in self.rows
+                if (pattern is None or r["pattern"] == pattern)
+                and (taps is None or r["taps"] == taps)
+                and (layers is None or r["layers"] == layers)
+                and (scene is None or r["scene"] == scene)]
+
     def value(self, column, pattern=None, taps=None, layers=None, scene=None):
-        return mean([r[column] for r in self.rows
-                     if (pattern is None or r["pattern"] == pattern)
-                     and (taps is None or r["taps"] == taps)
-                     and (layers is None or r["layers"] == layers)
-                     and (scene is None or r["scene"] == scene)])
+        return mean([r.get(column) for r in self._matching(pattern, taps, layers, scene)])
+
+    def repeats(self, column, pattern=None, taps=None, layers=None, scene=None):
+        """The same mean in each repeat of the run (rows of one temporal
+        offset), in the order of the offsets: the values whose spread is the
+        run's noise (noise.py). One value for a run of one repeat."""
+        groups = {}
+        for r in self._matching(pattern, taps, layers, scene):
+            groups.setdefault(r.get("temporal_offset"), []).append(r.get(column))
+        return [mean(groups[key]) for key in sorted(groups, key=lambda k: -1 if k is None else k)]
 
 
 def read_csv(path):
@@ -118,3 +130,12 @@ def read_csv(path):
         return None
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def read_discrepancy(path):
+    """discrepancy.csv as pattern -> [(n, D*(n))], n ascending."""
+    series = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            series.setdefault(row["pattern"], []).append((int(row["n"]), float(row["discrepancy"])))
+    return series

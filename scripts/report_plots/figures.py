@@ -1,8 +1,7 @@
 """The report's figures (matplotlib, drawn with the Agg backend by the caller)."""
-import csv
 import os
 
-from .data import METHOD_LABELS, PATTERN_LABELS, STUDY_TAPS, read_pfm
+from .data import METHOD_LABELS, PATTERN_LABELS, STUDY_TAPS, read_discrepancy, read_pfm
 
 
 def atomic_savefig(fig, path):
@@ -15,9 +14,15 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
     """`others`: (method, Table of its rows) for the AO methods beside the
     first; each is drawn in black, one marker per method."""
     fig, axes = plt.subplots(1, 2, figsize=(13, 5))
-    panels = [("ref_blur_mae", "MAE against the ray-traced reference (after the blur)"),
-              ("conv_raw_mae", f"MAE against the converged estimator (before the blur)")]
-    for ax, (column, title) in zip(axes, panels):
+    # Estimators are compared against one truth only: an estimator's own
+    # converged result keeps its bias, so against it a biased estimator
+    # looks good. The right panel is the sampling error of the first
+    # method's patterns, each against that same estimator converged.
+    panels = [("ref_blur_mae", "every estimator against the same truth: MAE against the "
+               "ray-traced reference (after the blur)", True),
+              ("conv_raw_mae", "sampling error of the patterns of one estimator: MAE against "
+               "its own converged result (before the blur)", False)]
+    for ax, (column, title, with_others) in zip(axes, panels):
         for pattern in patterns:
             for layer in layers:
                 xs = [table.value("sao_ms", pattern, n, layer) for n in taps]
@@ -33,7 +38,7 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
                 if pattern == patterns[0] and layer == layers[-1]:
                     for x, y, n in points:
                         ax.annotate(f"N={n}", (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
-        for index, (method, other) in enumerate(others):
+        for index, (method, other) in enumerate(others if with_others else ()):
             method_taps = sorted({r["taps"] for r in other.rows})
             for layer in layers:
                 xs = [other.value("sao_ms", taps=n, layers=layer) for n in method_taps]
@@ -51,8 +56,7 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
         ax.set_yscale("log")
         ax.set_title(title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-    # The left panel has every curve (the march has no converged result), so
-    # its legend serves both, below them.
+    # The left panel has every curve, so its legend serves both, below them.
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
     fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(labels) + 3) // 4), 1, 1))
@@ -61,10 +65,7 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
 
 
 def plot_discrepancy(plt, path, out):
-    series = {}
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            series.setdefault(row["pattern"], []).append((int(row["n"]), float(row["discrepancy"])))
+    series = read_discrepancy(path)
     fig, ax = plt.subplots(figsize=(8, 5))
     for pattern, points in series.items():
         ax.plot([p[0] for p in points], [p[1] for p in points], marker=".", linewidth=1,
@@ -94,7 +95,7 @@ def plot_discrepancy_vs_error(plt, table, patterns, study, out):
             ax.scatter([d], [e], label=PATTERN_LABELS.get(pattern, pattern))
         ax.set_title(f"N = {n}")
         ax.set_xlabel("D*(N)")
-        ax.set_ylabel("MAE vs converged (raw)")
+        ax.set_ylabel("MAE against its own converged (raw)")
         ax.grid(True, alpha=0.3)
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()

@@ -159,10 +159,14 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     options.converged_taps = 128;
     options.warmup = 0;
     options.frames = 1;
+    // Two repeats (the default), and the extras, asked for.
+    REQUIRE(options.repeats == 2);
+    options.stability = true;
+    options.float_check = true;
     options.float_max_n = 64;
     options.output = output;
     const report::ReportResult result = report::run_report(options);
-    REQUIRE(result.rows.size() == 10);
+    REQUIRE(result.rows.size() == 20);
     const std::string device = deepgi::query_context_info().renderer;
     REQUIRE_FALSE(device.empty());
 
@@ -178,6 +182,8 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     std::map<std::string, std::size_t> column;
     for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
     std::set<std::string> combinations;
+    // Each combination's first-frame raw error against the truth, per repeat.
+    std::map<std::string, std::map<int, double>> repeat_error;
     std::map<int, std::vector<double>> sampling_error;
     // Each stage's error against the ray-traced truth, summed over the rows.
     std::map<std::string, double> stage_error;
@@ -191,7 +197,14 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         CHECK(fields[0] == "cornell");
         CHECK(fields[5] == device);  // the context that timed the row labels it
         const std::string& method = fields[4];
-        combinations.insert(method + "/" + fields[1] + "/" + fields[2] + "/" + fields[3]);
+        const std::string combination =
+            method + "/" + fields[1] + "/" + fields[2] + "/" + fields[3];
+        combinations.insert(combination);
+        const int offset = std::stoi(fields[column.at("temporal_offset")]);
+        // repeat_offset: 9 frames per repeat at --warmup 0 --frames 1.
+        CHECK((offset == 0 || offset == 9));
+        CHECK(report::repeat_offset(options, offset / 9) == offset);
+        repeat_error[combination][offset] = std::stod(fields[column.at("ref_raw_mae")]);
         const int taps = std::stoi(fields[2]);
         // The march gathers no taps, so it has no converged AO to compare with.
         if (method == "march") {
@@ -216,7 +229,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
             CHECK(core >= 0.0);
             CHECK(core <= below);
         }
-        if (fields[1] == "optimal" && taps == 4 && fields[3] == "2")
+        if (fields[1] == "optimal" && taps == 4 && fields[3] == "2" && offset == 0)
             open_blur_below[method] = std::stod(fields[column.at("ref_open_blur_below")]);
         // Every timing column names a pass the frame timed: none is empty.
         for (const auto& [name, index] : column) {
@@ -246,8 +259,15 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     // raw gather, for AO and for radiosity alike.
     CHECK(stage_error["ref_temporal_mae"] < stage_error["ref_raw_mae"]);
     CHECK(stage_error["rad_ref_temporal_rel_mae"] < stage_error["rad_ref_raw_rel_mae"]);
-    CHECK(rows == 10);
+    CHECK(rows == 20);
     CHECK(combinations.size() == 10);
+    // Each combination twice, and the other temporal offset really samples
+    // differently: the repeats' errors differ (the spread is not zero).
+    for (const auto& [combination, errors] : repeat_error) {
+        INFO(combination);
+        REQUIRE(errors.size() == 2);
+        CHECK(errors.at(0) != errors.at(9));
+    }
     for (const char* expected :
          {"solid-angle/optimal/4/1", "solid-angle/optimal/4/2", "solid-angle/optimal/32/1",
           "solid-angle/optimal/32/2", "solid-angle/golden/4/1", "solid-angle/golden/4/2",
@@ -267,11 +287,12 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (std::size_t at = json.find("\"scene\":"); at != std::string::npos;
          at = json.find("\"scene\":", at + 1))
         ++json_rows;
-    CHECK(json_rows == 10);
-    CHECK(count_of(json, "\"device\":") == 10);
-    // Two rows of the march, and its half of the stability rows (checked below).
+    CHECK(json_rows == 20);
+    CHECK(count_of(json, "\"device\":") == 20);
+    CHECK(json.find("\"repeats\":2,") != std::string::npos);
+    // Four rows of the march, and its half of the stability rows (checked below).
     const std::string rows_json = json.substr(0, json.find("\"stability\":"));
-    CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 2);
+    CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 4);
     CHECK(fs::exists(output / "discrepancy.csv"));
     // The images of each method, counted again from the files: the open
     // pixels below 0.99 agree with the row the images came from.
@@ -350,52 +371,61 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     CHECK(choices[6].at("differs") == "1");
     CHECK(json.find(fmt::format("\"differing\":{},", differing)) != std::string::npos);
 
+    // The summary states the extras that were asked for, its counts
+    // recomputed here from the CSV files the report wrote.
+    if (fs::exists("/usr/bin/python3")) {
+        const auto plot = spiral::test::run_command("/usr/bin/python3 '" +
+                                                    std::string(DEEPGI_PLOT_REPORT_SCRIPT) +
+                                                    "' --summary-only '" + output.string() + "'");
+        INFO(plot.err);
+        REQUIRE(plot.status == 0);
+        const std::string summary = spiral::test::read_file(output / "summary.md");
+        INFO(summary);
+        std::size_t passing = 0;
+        for (const auto& row : stability) passing += row.at("pass") == "1";
+        CHECK(summary.find("## Numerical stability") != std::string::npos);
+        CHECK(summary.find(fmt::format("**{} of {} checks pass**", passing, stability.size())) !=
+              std::string::npos);
+        CHECK(summary.find(fmt::format("exact integer search at **{}** n", differing)) !=
+              std::string::npos);
+    }
     fs::remove_all(output);
 }
 
-TEST_CASE("report: the summary's sentences agree with the CSV files beside it", "[report][gl]") {
-    // summary.md is written by the plot script, which needs matplotlib.
-    if (!fs::exists("/usr/bin/python3") ||
-        spiral::test::run_command("/usr/bin/python3 -c 'import matplotlib'").status != 0)
-        spiral::test::skip_test("python3 with matplotlib is missing (Debian: python3-matplotlib)");
-    deepgi::HeadlessContext context;
-    const fs::path output = spiral::test::make_scratch_dir("deepgi-report-summary");
-    report::ReportOptions options;
-    options.scenes = {"cornell"};
-    options.taps = {4, 8};
-    options.patterns = {"optimal"};
-    options.layers = {1};
-    options.ao_methods = {deepgi::AoMethod::solid_angle};
-    options.width = 96;
-    options.height = 54;
-    options.rays = 32;
-    options.converged_taps = 64;
-    options.warmup = 0;
-    options.frames = 1;
-    options.float_max_n = 64;
-    options.output = output;
-    report::run_report(options);
+TEST_CASE("report: extras run only when asked, and a tiny run says what it cannot conclude",
+          "[report][gl]") {
+    // The command as a user runs it, with nothing asked beyond the rows.
+    const fs::path output = spiral::test::make_scratch_dir("deepgi-report-defaults");
+    const auto run = spiral::test::run_command(
+        std::string(DEEPGI_EXECUTABLE) +
+        " report --scenes cornell --taps 4,8 --patterns optimal --layers 1 --ao-methods "
+        "solid-angle --size 96x54 --rays 32 --converged-taps 64 --warmup 0 --frames 1 "
+        "--no-plots --output '" +
+        output.string() + "'");
+    INFO(run.out << run.err);
+    REQUIRE(run.status == 0);
+    CHECK_FALSE(fs::exists(output / "stability.csv"));
+    CHECK_FALSE(fs::exists(output / "float_vs_exact.csv"));
+    CHECK(read_csv(output / "report.csv").size() == 4);  // 2 tap counts x 2 repeats
+    const std::string json = spiral::test::read_file(output / "report.json");
+    CHECK(json.find("\"stability\":[\n]") != std::string::npos);
+    CHECK(json.find("\"max_n\":0,") != std::string::npos);
+    if (!fs::exists("/usr/bin/python3"))
+        spiral::test::skip_test("python3 is missing (the summary is written by a Python script)");
     const auto plot =
         spiral::test::run_command("/usr/bin/python3 '" + std::string(DEEPGI_PLOT_REPORT_SCRIPT) +
-                                  "' '" + output.string() + "'");
+                                  "' --summary-only '" + output.string() + "'");
     INFO(plot.err);
     REQUIRE(plot.status == 0);
     const std::string summary = spiral::test::read_file(output / "summary.md");
     INFO(summary);
-
-    // Its counts, recomputed here from the CSV files the report wrote.
-    const auto stability = read_csv(output / "stability.csv");
-    REQUIRE_FALSE(stability.empty());
-    std::size_t passing = 0;
-    for (const auto& row : stability) passing += row.at("pass") == "1";
-    CHECK(summary.find("## Numerical stability") != std::string::npos);
-    CHECK(summary.find(fmt::format("**{} of {} checks pass**", passing, stability.size())) !=
+    CHECK(summary.find("## Numerical stability") == std::string::npos);
+    CHECK(summary.find("checks pass") == std::string::npos);
+    // One pattern at one study tap count: no rank correlation, and why.
+    CHECK(summary.find("This run cannot say: a rank correlation needs at least 3 patterns") !=
           std::string::npos);
-    const auto choices = read_csv(output / "float_vs_exact.csv");
-    REQUIRE(choices.size() == 64);
-    int differing = 0;
-    for (const auto& row : choices) differing += row.at("differs") == "1";
-    CHECK(summary.find(fmt::format("exact integer search at **{}** n", differing)) !=
+    CHECK(summary.find("Spearman") == std::string::npos);
+    CHECK(summary.find("only optimal tau (m = 1) was run, so no pattern is ranked") !=
           std::string::npos);
     fs::remove_all(output);
 }
@@ -407,7 +437,11 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
     for (const std::string& arguments :
          {std::string("--taps 0"), std::string("--taps 4,x"), std::string("--patterns fibonacci"),
           std::string("--layers 3"), std::string("--size 10by10"), std::string("--rays -1"),
-          std::string("--float-max-n -1"), std::string("--float-max-n 5000"),
+          std::string("--float-check --float-max-n 0"),
+          std::string("--float-check --float-max-n 5000"),
+          std::string("--float-max-n 64"),  // without --float-check: refused, not ignored
+          std::string("--no-stability"),    // the hard cases are off unless --stability
+          std::string("--repeats 0"), std::string("--repeats 17"),
           std::string("--ao-methods horizon"), std::string("--ao-methods march,march"),
           std::string("--scenes no-such-scene")}) {
         const auto run = spiral::test::run_command(

@@ -150,6 +150,7 @@ struct ReportInfo {
     // The configuration of the per-scene images, which every AO method runs.
     std::string image_pattern;
     int image_taps = 0;
+    int repeats = 1;  // renders of every row, each with its own temporal offset
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
@@ -186,10 +187,18 @@ struct ReportOptions {
     // configuration, or the nearest tap count in the run.
     std::string image_pattern = "optimal";
     int image_taps = 11;
-    // The numerical hard cases (stability.csv); false skips them.
-    bool stability = true;
-    // Exact against double-precision tau search for n = 1..float_max_n
-    // (float_vs_exact.csv); 0 skips it. 1024 costs 95 to 130 s on two cores.
+    // Every row is rendered this many times, repeat r with the temporal
+    // sequence started at repeat_offset(options, r) (RenderSettings::
+    // temporal_offset): another realisation of the per-frame rotation. The
+    // spread between repeats is the run's own noise, which the summary
+    // compares every difference it reports with (docs/report.md).
+    int repeats = 2;
+    // Extras that run only when asked (each adds minutes to a full run):
+    // the numerical hard cases (stability.csv), and the exact against the
+    // double-precision tau search for n = 1..float_max_n (float_vs_exact.csv;
+    // 1024 costs 95 to 130 s on two cores).
+    bool stability = false;
+    bool float_check = false;
     int float_max_n = 1024;
     // The mirror rows of every scene with mirrors (reflections.csv).
     ReflectionOptions reflections;
@@ -204,6 +213,11 @@ struct ReportOptions {
 
 // Throws deepgi::InputError naming the first invalid option.
 void validate(const ReportOptions& options);
+
+// The temporal offset of repeat r: whole disjoint stretches of the R2
+// sequence, each as long as the frames a row renders after its cut
+// (max(9, 1 + warmup + frames)), so no two repeats share a frame's sample.
+int repeat_offset(const ReportOptions& options, int repeat);
 
 struct ReportResult {
     std::vector<Row> rows;

@@ -135,6 +135,9 @@ inline constexpr int max_ao_steps = 32;  // gtao and bitmask, per slice side (ao
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_steps = 1024;
+// temporal-offset: every value, and the next one past it, is exact in the
+// float the settings rows carry.
+inline constexpr int max_temporal_offset = 1 << 20;
 }  // namespace limits
 
 // The bias each estimator was derived or tuned with. Solid-angle needs none:
@@ -268,6 +271,11 @@ struct RenderSettings {
     DebugView view = DebugView::final_image;
     int shadow_map_size = 2048;
     int antialias = 1;  // 1: the anti-aliasing pass filters the final image; 0: off
+    // The temporal sequence's index on the first frame after history is
+    // dropped (frame.cpp): frame k after it uses R2 point temporal_offset + k.
+    // 0 is the shipped sequence; the report repeats rows with other offsets
+    // to measure its run-to-run spread (docs/report.md).
+    int temporal_offset = 0;
     TimingMode timing = TimingMode::automatic;
     // Installs a KHR_debug callback: a GL error raised inside a pass becomes a
     // GraphicsError naming the pass (costs a synchronous debug context).
