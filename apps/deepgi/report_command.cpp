@@ -165,6 +165,12 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
     app.add_option("--plot-script", options.plot_script,
                    "The plotting script (scripts/plot_report.py of the source tree)");
+    // A single-valued option given twice takes the last value, so that
+    // scripts/report.sh's extra flags override its configuration.
+    for (CLI::Option* option : app.get_options()) {
+        if (option->get_items_expected_max() == 1)
+            option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    }
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
     report.stability = !options.no_stability;
