@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <charconv>
+#include <optional>
 
 namespace deepgi::report {
 
