@@ -160,6 +160,31 @@ def equal_cost_findings(series, spread):
     return lines
 
 
+def thick_against_slices(series, spread):
+    """The thick spiral's MAE at each measured cost of gtao and the bitmask,
+    against theirs: better, worse, or within the spread."""
+    thick = series.get("spiral-thick")
+    if not thick:
+        return []
+    lines = []
+    for method in ("gtao", "bitmask"):
+        for ms, mae, _, key in series.get(method, []):
+            own = interpolate(thick, ms)
+            if own is None:
+                lines.append(f"{label(method)} {cost_label(method, key)} ({ms:.2f} ms, MAE "
+                             f"{mae:.4f}): outside the thick spiral's measured costs")
+                continue
+            if abs(own - mae) <= spread:
+                verdict = "within the spread"
+            elif own < mae:
+                verdict = "the thick spiral is more accurate"
+            else:
+                verdict = "the thick spiral is less accurate"
+            lines.append(f"{label(method)} {cost_label(method, key)} ({ms:.2f} ms): MAE "
+                         f"{mae:.4f}, thick spiral {own:.4f}, {verdict}")
+    return lines
+
+
 def plot_estimator_curves(plt, series, out, title):
     fig, ax = plt.subplots(figsize=(8, 5.5))
     for index, (method, points) in enumerate(series.items()):
@@ -253,6 +278,10 @@ def estimators_section(plt, directory, rows, info, add):
             add("- **At equal cost** (each curve read at the others' measured costs, linearly "
                 "in log ms; only where two or more curves reach): " +
                 ("; ".join(findings) if findings else "no two curves cover a common cost") + ".")
+            against = thick_against_slices(series, spread)
+            if against:
+                add("- **The thick spiral at the slice estimators' costs** (its curve read at each "
+                    "of their points it reaches): " + "; ".join(against) + ".")
         add("")
         add("![every estimator, error against milliseconds](estimators_error_vs_ms.png)\n")
     flicker = read_csv(os.path.join(directory, "flicker.csv"))
