@@ -149,9 +149,10 @@ def equal_cost_findings(series, spread):
         span = f"at {lo:.2f} ms" if i == j else f"from {lo:.2f} to {hi:.2f} ms"
         lead = min(o[3] - o[2] for o in outcomes[i:j + 1])
         kind = outcomes[i][1]
+        runners = list(dict.fromkeys(label(o[4]) for o in outcomes[i:j + 1]))
         if kind[0] == "winner":
             lines.append(f"{span}, the **{label(kind[1])}** is the most accurate: its MAE is at "
-                         f"least {lead:.4f} below the next ({label(outcomes[i][4])}), more than "
+                         f"least {lead:.4f} below the next ({' or '.join(runners)}), more than "
                          f"the spread")
         else:
             lines.append(f"{span}, the {label(kind[1])} and the {label(kind[2])} lead within "
@@ -224,7 +225,8 @@ def plot_flicker(plt, flicker, out):
     methods = [m for (m, role) in means if role == "estimator"]
     floor = next((v for (m, role), v in means.items() if role == "floor"), (None, None))
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    for ax, index, title in ((axes[0], 0, "still camera"), (axes[1], 1, "along the camera path")):
+    for ax, index, title in ((axes[0], 0, "still camera, mean over scenes"),
+                             (axes[1], 1, "camera path, mean over scenes with a path")):
         values = [means[(m, "estimator")][index] for m in methods]
         ax.bar(range(len(methods)), [v or 0.0 for v in values],
                color=[f"C{i % 10}" for i in range(len(methods))])
@@ -233,11 +235,13 @@ def plot_flicker(plt, flicker, out):
         if floor[index] is not None:
             ax.axhline(floor[index], color="black", linestyle="--",
                        label="solid angle at the converged tap count (floor)")
-            ax.legend(fontsize=7)
         ax.set_ylabel("mean |AV_t - AV_t-1| per pixel")
         ax.set_title(f"Frame-to-frame change, {title}", fontsize=9)
         ax.grid(True, axis="y", alpha=0.3)
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", fontsize=8)
+    fig.tight_layout(rect=(0, 0.06 if handles else 0, 1, 1))
     atomic_savefig(fig, out)
     plt.close(fig)
 
