@@ -36,7 +36,8 @@
 // A hit takes the lit radiance of the hit texel in the layer hit: its direct
 // light, its emission (layer 0) and albedo / pi times the deep radiosity E of
 // that layer with the environment filling the uncovered part, as compose.frag
-// does (without the AO, which exists for layer 0 only). The hit fades into
+// does (without the AO, which exists for layer 0 only). A hit on a mirror
+// texel is followed by a second march from there (hit_radiance). The hit fades into
 // the environment towards the buffer's edge, for rays pointing at the camera
 // and over the last tenth of the distance, so no seam shows.
 #include "frame_constants.glsl"
@@ -181,6 +182,68 @@ vec3 lit_radiance(ivec2 p, int layer) {
          albedo * inv_pi * (gathered.rgb + environment * (1.0 - confidence));
 }
 
+// Marches the ray origin + t direction (camera space) with the pixel's
+// jitter; the layer hit (march_empty: none) and its texel and t.
+int march(vec3 origin, vec3 direction, float jitter, out ivec2 hit_pixel, out float hit_t) {
+  float step_length = reflection.distance / float(reflection.steps);
+  hit_pixel = ivec2(0);
+  hit_t = 0.0;
+  int k = 0;
+  while (k < reflection.steps) {
+    int span = min(reflection.skip_steps, reflection.steps - k);
+    if (span > 1 && segment_in_front(origin + direction * ((float(k) + jitter) * step_length),
+                                     origin + direction * ((float(k + span - 1) + jitter) * step_length))) {
+      k += span;
+      continue;
+    }
+    float t = (float(k) + jitter) * step_length;
+    ivec2 p;
+    int layer = inside_layer(origin + direction * t, step_length, p);
+    if (layer == march_stop) return march_empty;
+    if (layer >= 0) {
+      hit_pixel = p;
+      hit_t = t;
+      return layer;
+    }
+    ++k;
+  }
+  return march_empty;
+}
+
+// The fades of a hit: towards the buffer's edge, for rays pointing at the
+// camera, and over the last tenth of the distance.
+float hit_weight(ivec2 hit_pixel, vec3 direction, float hit_t) {
+  vec2 centre = vec2(hit_pixel) + 0.5;
+  vec2 edge = min(centre, frame.internal_size.xy - centre);
+  float weight = clamp(min(edge.x, edge.y) / reflection.edge_fade_pixels, 0.0, 1.0);
+  weight *= 1.0 - smoothstep(reflection.facing_fade_start, reflection.facing_fade_end, direction.z);
+  weight *= 1.0 - smoothstep(0.9, 1.0, hit_t / reflection.distance);
+  return weight;
+}
+
+// What a ray arriving along `direction` at the hit texel sees there. A
+// diffuse texel sends its lit radiance. A mirror texel sends its emission
+// plus its reflectance times what its own reflection brings: the ray is
+// marched once more from the texel's point, reflected about its normal, and
+// what that march hits is shaded as lit radiance (a third mirror as diffuse).
+vec3 hit_radiance(ivec2 hit_pixel, int hit_layer, vec3 direction, float jitter) {
+  ivec3 texel = ivec3(hit_pixel, hit_layer);
+  vec4 albedo = texelFetch(gbuffer_albedo, texel, 0);
+  if (!is_mirror_alpha(albedo.a)) return lit_radiance(hit_pixel, hit_layer);
+  float depth = frame.camera_ray_scale.z / texelFetch(gbuffer_depth, texel, 0).r;
+  vec3 origin = camera_position_at(vec2(hit_pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 normal = decode_normal(texelFetch(gbuffer_normal, texel, 0).xy);
+  vec3 next = normalize(reflect(direction, normal));
+  ivec2 next_pixel;
+  float next_t;
+  int next_layer = march(origin, next, jitter, next_pixel, next_t);
+  vec3 seen = environment_radiance(next);
+  if (next_layer >= 0)
+    seen = mix(seen, lit_radiance(next_pixel, next_layer), hit_weight(next_pixel, next, next_t));
+  vec3 emissive = hit_layer == 0 ? texelFetch(gbuffer_emissive, texel, 0).rgb : vec3(0.0);
+  return emissive + srgb_decode(albedo.rgb) * seen;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float stored = texelFetch(gbuffer_depth, ivec3(pixel, 0), 0).r;
@@ -195,45 +258,19 @@ void main() {
   vec3 direction = normalize(reflect(normalize(origin), normal));
   float jitter = fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel)) ^ 0x3c6ef372u) >> 8u) * (1.0 / 16777216.0) +
                        frame.temporal_sample.y);
-  float step_length = reflection.distance / float(reflection.steps);
 
-  int hit_layer = march_empty;
-  ivec2 hit_pixel = ivec2(0);
-  float hit_t = 0.0;
-  int k = 0;
-  while (k < reflection.steps) {
-    int span = min(reflection.skip_steps, reflection.steps - k);
-    if (span > 1 && segment_in_front(origin + direction * ((float(k) + jitter) * step_length),
-                                     origin + direction * ((float(k + span - 1) + jitter) * step_length))) {
-      k += span;
-      continue;
-    }
-    float t = (float(k) + jitter) * step_length;
-    ivec2 p;
-    int layer = inside_layer(origin + direction * t, step_length, p);
-    if (layer == march_stop) break;
-    if (layer >= 0) {
-      hit_layer = layer;
-      hit_pixel = p;
-      hit_t = t;
-      break;
-    }
-    ++k;
-  }
-
+  ivec2 hit_pixel;
+  float hit_t;
+  int hit_layer = march(origin, direction, jitter, hit_pixel, hit_t);
   vec3 environment = environment_radiance(direction);
   if (hit_layer < 0) {
     out_radiance = vec4(environment, 0.0);
     out_hit = vec4(-1.0, -1.0, -1.0, jitter);
     return;
   }
-  vec2 centre = vec2(hit_pixel) + 0.5;
-  vec2 edge = min(centre, frame.internal_size.xy - centre);
-  float weight = clamp(min(edge.x, edge.y) / reflection.edge_fade_pixels, 0.0, 1.0);
-  weight *= 1.0 - smoothstep(reflection.facing_fade_start, reflection.facing_fade_end, direction.z);
-  weight *= 1.0 - smoothstep(0.9, 1.0, hit_t / reflection.distance);
-  out_radiance = vec4(mix(environment, lit_radiance(hit_pixel, hit_layer), weight), weight);
-  out_hit = vec4(centre, float(hit_layer), jitter);
+  float weight = hit_weight(hit_pixel, direction, hit_t);
+  out_radiance = vec4(mix(environment, hit_radiance(hit_pixel, hit_layer, direction, jitter), weight), weight);
+  out_hit = vec4(vec2(hit_pixel) + 0.5, float(hit_layer), jitter);
 }
 
 #endif

@@ -30,6 +30,7 @@ struct CommandOptions {
     bool plots = true;
     bool no_plots = false;
     bool no_stability = false;
+    bool no_reflections = false;
     std::string python = "/usr/bin/python3";
     std::string plot_script = DEEPGI_PLOT_REPORT_SCRIPT;
 };
@@ -161,6 +162,16 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--float-max-n", report.float_max_n,
                    "Exact against double tau search for n = 1..N (0: skip)")
         ->default_str(fmt::format("n = {}", report.float_max_n));
+    app.add_option("--reflection-steps", report.reflections.steps,
+                   "Reflection step counts of the mirror rows, comma-separated")
+        ->delimiter(',')
+        ->default_str(listed(report.reflections.steps));
+    app.add_option("--reflection-frames", report.reflections.frames,
+                   "Still frames per mirror configuration (the filtered radiance's mean; the "
+                   "timed ones follow --warmup)")
+        ->default_str(fmt::format("{} frames", report.reflections.frames));
+    app.add_flag("--no-reflections", options.no_reflections,
+                 "Skip the mirror rows (reflections.csv)");
     app.add_flag("--no-plots", options.no_plots, "Skip the matplotlib figures and summary.md");
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
     app.add_option("--plot-script", options.plot_script,
@@ -174,6 +185,7 @@ int run_report_command(int argc, char** argv) {
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
     report.stability = !options.no_stability;
+    report.reflections.enabled = !options.no_reflections;
     options.plots = !options.no_plots;
     return run_reporting_errors("deepgi report", [&] {
         if (!ao_methods.empty()) {

@@ -248,7 +248,7 @@ ReferenceImages render_reference(const RayScene& scene, const Camera& camera,
                         scene, eye, positions[i], normals[i],
                         scene.surface(first_hits[i]).shading_normal, settings.radiosity_radius,
                         render.environment, settings.irradiance_rays,
-                        stream_seed(settings.seed, 2 * pixels + i));
+                        stream_seed(settings.seed, 2 * pixels + i), render.mirror_roughness);
                     for (int c = 0; c < 3; ++c)
                         out.reflection_radiance.pixels[3 * i + c] = float(s.radiance[c]);
                     out.reflection_hit.pixels[3 * i + 0] =

@@ -4,6 +4,9 @@
 # (no AO), then per layer count (1, 2) and step count (16, 32, 64) a
 # headless render of FRAMES frames (the temporal filter's mean) with its dump,
 # compared by deepgi_compare_reflections over the viewport's mirror pixels.
+# `deepgi report` measures the same for every scene with mirrors, at the
+# report's settings (docs/report.md, "Mirror reflections"); this tool keeps
+# the renderer's defaults and any extra flags.
 # usage: measure_reflections.sh BUILD_DIR WORK_DIR [SCENE] [SIZE] [FRAMES] [extra deepgi flags...]
 set -eu
 build=$1; work=$2; scene=${3:-gallery}; size=${4:-160x90}; frames=${5:-32}

@@ -591,12 +591,17 @@ ReportResult run_report(const ReportOptions& options) {
                          .image_layers = image_layers,
                          .converged_taps = options.converged_taps},
             options, result.flicker, log);
+        for (ReflectionRow& row : measure_reflection_rows(
+                 scene_name, scene, settings, options.reflections, options.layers, options.rays,
+                 options.seed, options.threads, options.warmup, options.log))
+            result.reflections.push_back(std::move(row));
     }
 
     measure_side_tables(options, result, log, step);
 
     result.info.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_reflection_table(options.output, options.reflections.enabled, result.reflections);
     write_text(options.output / "report.csv", format_csv(result.rows));
     if (options.estimators.flicker_frames > 0)
         write_text(options.output / "flicker.csv", format_flicker_csv(result.flicker));

@@ -2,6 +2,7 @@
 import math
 import os
 
+from .reflections import reflection_section
 from .data import (METHOD_LABELS, PATTERN_LABELS, STUDY_TAPS, TARGET_BIAS, TARGET_MAE, Table,
                    atomic_write_text, fmt, mean, read_csv, spearman)
 
@@ -463,6 +464,7 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
     if extra:
         extra(add)  # sections drawn from more than these rows (estimators.py)
     stability_section(directory, add)
+    reflection_section(directory, list(dict.fromkeys(r["scene"] for r in all_rows or rows)), add)
 
     add("## Figures\n")
     add("![error against milliseconds](error_vs_ms.png)\n")

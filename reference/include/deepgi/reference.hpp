@@ -238,18 +238,25 @@ IrradianceSample irradiance_at(const RayScene& scene, glm::vec3 position, glm::v
 // shades a hit: L(y) = direct light (exact shadow ray) + emissive + albedo /
 // pi * E(y), E the one-bounce irradiance of irradiance_at() at y over the
 // radiosity radius. A back face gives 0 (inside a solid); a miss gives the
-// environment's radiance along r.
+// environment's radiance along r. When y is itself a mirror (under
+// `mirror_roughness`), L(y) = emissive + reflectance * the radiance its own
+// reflected ray brings, followed through up to kMaxMirrorBounces mirrors
+// after the first; a mirror past that is shaded as a diffuse surface.
+constexpr int kMaxMirrorBounces = 3;
+
 struct ReflectionSample {
     RayScene::Hit hit;          // the reflected ray's first surface (hit = false: none)
     glm::vec3 direction{0.0f};  // r, unit
     glm::dvec3 radiance{0.0};   // RGB reflected radiance (before the mirror's reflectance)
-    int rays = 0;               // irradiance rays at y
+    int rays = 0;               // irradiance rays at the surface shaded
+    int mirror_bounces = 0;     // further mirrors the ray was reflected by (0 to kMaxMirrorBounces)
 };
 
 ReflectionSample mirror_reflection_at(const RayScene& scene, glm::vec3 eye, glm::vec3 position,
                                       glm::vec3 geometric_normal, glm::vec3 shading_normal,
                                       float radiosity_radius, bool environment,
-                                      const IrradianceRayBudget& budget, std::uint64_t seed);
+                                      const IrradianceRayBudget& budget, std::uint64_t seed,
+                                      float mirror_roughness);
 
 struct ReferenceSettings {
     RenderSettings render;  // size, guard band, min_separation (dz), ao.radius

@@ -8,6 +8,7 @@
 #include "deepgi/hard_cases.hpp"
 #include "deepgi/image_io.hpp"
 #include "deepgi/report_estimators.hpp"
+#include "deepgi/report_reflections.hpp"
 #include "deepgi/settings.hpp"
 
 #include <spiral/codegen.hpp>
@@ -163,7 +164,7 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
 
 struct ReportOptions {
     std::vector<std::string> scenes = {"ref-crease", "ref-slab", "ref-board", "ref-bench",
-                                       "cornell",    "atrium",   "warehouse"};
+                                       "cornell",    "atrium",   "warehouse", "gallery"};
     std::vector<int> taps = {4, 8, 11, 16, 32, 64};
     std::vector<std::string> patterns = {"optimal", "tau1", "golden", "m2", "m4", "m8"};
     std::vector<int> layers = {1, 2};
@@ -194,6 +195,8 @@ struct ReportOptions {
     // Exact against double-precision tau search for n = 1..float_max_n
     // (float_vs_exact.csv); 0 skips it. 1024 costs 95 to 130 s on two cores.
     int float_max_n = 1024;
+    // The mirror rows of every scene with mirrors (reflections.csv).
+    ReflectionOptions reflections;
     std::filesystem::path output;
     // One line per finished step (for the log); may be empty.
     std::function<void(const std::string&)> log;
@@ -212,6 +215,7 @@ struct ReportResult {
     std::vector<StabilityRow> stability;
     std::vector<spiral_float::Choice> float_choices;  // one per n, in order
     std::vector<FlickerRow> flicker;                  // flicker.csv, when measured
+    std::vector<ReflectionRow> reflections;
 };
 
 // Renders everything and writes into options.output (created if missing):

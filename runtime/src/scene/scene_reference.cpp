@@ -1,8 +1,10 @@
 // Small scenes for measuring deep SAO against the ray-traced reference, each
 // built around one way screen-space AO can err: a crease with a closed form,
 // a slab above a floor, a thin board in front of a wall, and a bench behind a
-// row of posts (occluders only layer 1 sees). Grey Lambertian surfaces under
-// one directional light.
+// row of posts (occluders only layer 1 sees); and, for the mirror
+// reflections, a room whose mirror floor meets a mirror wall, where reflected
+// rays meet a second mirror. Grey Lambertian surfaces (and the two mirrors)
+// under one directional light.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/scene_builder.hpp"
@@ -44,7 +46,7 @@ Scene finish(SceneBuilder& builder, std::string name, Camera camera) {
 }  // namespace
 
 std::vector<std::string> reference_scene_names() {
-    return {"ref-crease", "ref-slab", "ref-board", "ref-bench"};
+    return {"ref-crease", "ref-slab", "ref-board", "ref-bench", "ref-mirrors"};
 }
 
 Scene make_reference_scene(std::string_view name) {
@@ -81,6 +83,29 @@ Scene make_reference_scene(std::string_view name) {
         for (int i = -3; i <= 3; ++i)
             builder.add_box({0.32f * float(i), 0.7f, -2.1f}, {0.07f, 0.7f, 0.07f}, grey);
         return finish(builder, std::string(name), look({0.1f, 0.9f, 0.2f}, 0.0f, -14.0f));
+    }
+    if (name == "ref-mirrors") {
+        // A mirror floor meeting a mirror wall on the left (x = -3) at a
+        // right angle, in a room open towards the camera: rays leaving the
+        // floor towards the wall are reflected again, on to the grey back
+        // wall, the coloured right wall and the two boxes, which the camera
+        // sees, so a screen-space march can find where they end.
+        const int mirror = builder.add_mirror_material({0.9f, 0.9f, 0.9f});
+        const int warm = builder.add_material({0.75f, 0.55f, 0.35f});
+        const int red = builder.add_material({0.8f, 0.1f, 0.08f});
+        const int green = builder.add_material({0.1f, 0.7f, 0.2f});
+        const float half = 3.0f, back = -5.0f, front = 4.0f, height = 3.0f;
+        builder.add_quad({-half, 0, back}, {half, 0, back}, {half, 0, front}, {-half, 0, front},
+                         {0, 1, 0}, mirror);
+        builder.add_quad({-half, 0, back}, {-half, 0, front}, {-half, height, front},
+                         {-half, height, back}, {1, 0, 0}, mirror);
+        builder.add_quad({-half, 0, back}, {half, 0, back}, {half, height, back},
+                         {-half, height, back}, {0, 0, 1}, grey);
+        builder.add_quad({half, 0, back}, {half, 0, front}, {half, height, front},
+                         {half, height, back}, {-1, 0, 0}, warm);
+        builder.add_box({-0.6f, 0.45f, -2.6f}, {0.45f, 0.45f, 0.45f}, red, glm::radians(25.0f));
+        builder.add_box({1.3f, 0.6f, -1.2f}, {0.3f, 0.6f, 0.3f}, green);
+        return finish(builder, std::string(name), look({1.8f, 1.9f, 3.8f}, -28.0f, -20.0f));
     }
     throw InputError(fmt::format("unknown reference scene '{}'", name));
 }
