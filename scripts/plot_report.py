@@ -6,7 +6,9 @@
 Reads DIR/report.csv, DIR/report.json, DIR/discrepancy.csv and
 DIR/images/*.pfm (written by `deepgi report`), writes DIR/error_vs_ms.png,
 DIR/discrepancy.png, DIR/discrepancy_vs_error.png, DIR/images/<scene>.png
-(truth, then each AO method's estimate and signed error) and DIR/summary.md.
+(truth, then each AO method's estimate and signed error), from every
+estimator's costs DIR/estimators_error_vs_ms.png, from DIR/flicker.csv
+DIR/flicker.png, and DIR/summary.md.
 Every statement in the summary is computed from the CSV, so re-running the
 report rewrites it. --summary-only writes summary.md alone (no figures; it
 needs no matplotlib).
@@ -22,6 +24,7 @@ import os
 import sys
 
 from report_plots.data import STUDY_TAPS, Table, read_discrepancy, read_rows
+from report_plots.estimators import at_image_cost, estimators_section
 from report_plots.figures import (plot_discrepancy, plot_discrepancy_vs_error, plot_error_vs_ms,
                                   plot_images)
 from report_plots.summary import summary
@@ -37,6 +40,10 @@ def main():
     all_rows = read_rows(os.path.join(directory, "report.csv"))
     if not all_rows:
         sys.exit("plot_report: report.csv has no rows")
+    # Every estimator at every cost goes to estimators.py; the rest of the
+    # report reads the slice estimators at one cost.
+    every_cost = all_rows
+    all_rows = at_image_cost(all_rows)
     methods = list(dict.fromkeys(r["ao_method"] for r in all_rows))
     # The first method's rows compare the patterns; the rest stand beside them.
     rows = [r for r in all_rows if r["ao_method"] == methods[0]]
@@ -67,7 +74,8 @@ def main():
     plot_discrepancy_vs_error(plt, table, patterns, study,
                               os.path.join(directory, "discrepancy_vs_error.png"))
     images = plot_images(plt, directory, scenes, methods)
-    summary(directory, rows, info, series, images, all_rows)
+    summary(directory, rows, info, series, images, all_rows,
+            extra=lambda add: estimators_section(plt, directory, every_cost, info, add))
 
 
 if __name__ == "__main__":

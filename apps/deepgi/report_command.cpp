@@ -123,6 +123,16 @@ int run_report_command(int argc, char** argv) {
                                deepgi::enum_name_list<deepgi::AoMethod>()))
         ->delimiter(',')
         ->default_str("solid-angle,published,march");
+    std::vector<std::string> slice_costs;
+    app.add_option("--slice-costs", slice_costs,
+                   "gtao and bitmask: the SLICESxSTEPS costs each runs at, comma-separated "
+                   "(--ao-slices x --ao-steps)")
+        ->delimiter(',')
+        ->default_str("1x4,2x8,4x8");
+    app.add_option("--flicker-frames", report.estimators.flicker_frames,
+                   "Frames at a still camera and along the camera path whose second half's "
+                   "frame-to-frame change flicker.csv holds (0: skip; else 4 to 256)")
+        ->default_str(fmt::format("{} frames", report.estimators.flicker_frames));
     app.add_option("--size", options.size, "Viewport WIDTHxHEIGHT in pixels (guard band added)")
         ->default_str(options.size + " pixels");
     app.add_option("--rays", report.rays,
@@ -172,6 +182,12 @@ int run_report_command(int argc, char** argv) {
     app.add_option("--python", options.python, "Python interpreter with matplotlib");
     app.add_option("--plot-script", options.plot_script,
                    "The plotting script (scripts/plot_report.py of the source tree)");
+    // A single-valued option given twice takes the last value, so that
+    // scripts/report.sh's extra flags override its configuration.
+    for (CLI::Option* option : app.get_options()) {
+        if (option->get_items_expected_max() == 1)
+            option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    }
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
     report.reflections.enabled = !options.no_reflections;
@@ -183,6 +199,12 @@ int run_report_command(int argc, char** argv) {
             report.ao_methods.clear();
             for (const std::string& name : ao_methods)
                 report.ao_methods.push_back(deepgi::parse_ao_method("--ao-methods", name));
+        }
+        if (!slice_costs.empty()) {
+            report.estimators.slice_costs.clear();
+            for (const std::string& text : slice_costs)
+                report.estimators.slice_costs.push_back(
+                    deepgi::report::parse_slice_cost("--slice-costs", text));
         }
         return run(options);
     });

@@ -2,6 +2,7 @@
 // per scene, and hands the images to the comparisons (compare.cpp); the
 // tables are formatted by format.cpp.
 #include "compare.hpp"
+#include "estimators.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/reference.hpp"
@@ -217,8 +218,9 @@ StaticFrames run_static_frames(
 struct Measured {
     double discrepancy = 0.0;
     double turns = 0.0;
-    int temporal_offset = 0;   // the repeat's start in the temporal sequence
-    bool gathers_taps = true;  // false: no converged AO to compare with
+    int temporal_offset = 0;              // the repeat's start in the temporal sequence
+    std::optional<SliceCost> slice_cost;  // gtao and bitmask
+    bool gathers_taps = true;             // false: no converged AO to compare with
     ErrorStats conv_raw, conv_blur, ref_raw, ref_blur, rad_raw, rad_blur;
     std::optional<ErrorStats> rad_ref_raw, rad_ref_blur;
     OpenCount open_raw;  // the raw AO over every open pixel
@@ -243,6 +245,8 @@ Row make_row(Row row, const Measured& m) {
     add("discrepancy", m.discrepancy);
     add("turns", m.turns);
     add("temporal_offset", double(m.temporal_offset));
+    add("ao_slices", m.slice_cost ? std::optional<double>(m.slice_cost->slices) : std::nullopt);
+    add("ao_steps", m.slice_cost ? std::optional<double>(m.slice_cost->steps) : std::nullopt);
     for (const auto& pass : timed_passes()) {
         const auto it = after.samples.find(pass);
         if (it == after.samples.end())
@@ -357,12 +361,7 @@ ReportResult run_report(const ReportOptions& options) {
                                           ? options.image_pattern
                                           : options.patterns.front();
     const int image_layers = *std::max_element(options.layers.begin(), options.layers.end());
-    // Every layer count, rendered options.repeats times (repeat_offset).
-    std::vector<std::pair<int, int>> layer_repeats;
-    for (int layers : options.layers) {
-        for (int repeat = 0; repeat < options.repeats; ++repeat)
-            layer_repeats.emplace_back(layers, repeat);
-    }
+    const SliceCost image_cost = image_slice_cost(options.estimators);
 
     fs::create_directories(options.output / "images");
     write_text(options.output / "discrepancy.csv", format_discrepancy_csv(options.patterns, 64));
@@ -425,11 +424,32 @@ ReportResult run_report(const ReportOptions& options) {
             RenderSettings method_settings = settings;
             method_settings.ao.method = method;
             method_settings.ao.bias = default_ao_bias(method);
-            // The AO and the radiosity gather at the row's layer count.
-            auto with_layers = [&](int layers) {
+            // The slice estimators run at each of their costs (a curve), the
+            // others at one: every cost at every layer count.
+            const bool marches_slices = ao_method_marches_slices(method);
+            // Each of those is rendered options.repeats times (repeat_offset).
+            struct CostAndLayers {
+                SliceCost cost;
+                int layers = 0;
+                int repeat = 0;
+            };
+            std::vector<CostAndLayers> runs;
+            for (const SliceCost& cost :
+                 marches_slices ? options.estimators.slice_costs : std::vector{image_cost}) {
+                for (int layers : options.layers) {
+                    for (int repeat = 0; repeat < options.repeats; ++repeat)
+                        runs.push_back({cost, layers, repeat});
+                }
+            }
+            // The AO and the radiosity gather at the row's layer count and cost.
+            auto with_layers = [&](int layers, SliceCost cost) {
                 RenderSettings s = method_settings;
                 s.ao.layers = layers;
                 s.radiosity.layers = layers;
+                if (marches_slices) {
+                    s.ao.slices = cost.slices;
+                    s.ao.steps = cost.steps;
+                }
                 return s;
             };
             // The first method compares the patterns; the others are curves
@@ -444,7 +464,7 @@ ReportResult run_report(const ReportOptions& options) {
                 write_headers(headers.path(), "optimal", options.converged_taps);
                 Renderer renderer(scene, method_settings, loader);
                 for (int layers : options.layers) {
-                    renderer.set_settings(with_layers(layers));
+                    renderer.set_settings(with_layers(layers, image_cost));
                     renderer.render(camera, CameraMotion::cut);
                     converged[layers] = read_frame(renderer);
                 }
@@ -457,9 +477,12 @@ ReportResult run_report(const ReportOptions& options) {
                     const double discrepancy = spiral::discrepancy(n, turns.p, turns.m).value();
                     Renderer renderer(scene, method_settings, loader);
                     result.info.cpu_clock = renderer.timing_uses_cpu_clock();
-                    for (const auto& [layers, repeat] : layer_repeats) {
+                    for (const CostAndLayers& run : runs) {
+                        const SliceCost cost = run.cost;
+                        const int layers = run.layers;
+                        const int repeat = run.repeat;
                         const int temporal_offset = repeat_offset(options, repeat);
-                        RenderSettings repeat_settings = with_layers(layers);
+                        RenderSettings repeat_settings = with_layers(layers, cost);
                         repeat_settings.temporal_offset = temporal_offset;
                         renderer.set_settings(repeat_settings);
                         // Errors from the first frame after a cut: no history in it.
@@ -515,7 +538,7 @@ ReportResult run_report(const ReportOptions& options) {
                             against_irradiance(frame.radiosity_blurred);
 
                         if (pattern == image_pattern && n == image_taps && layers == image_layers &&
-                            repeat == 0) {
+                            repeat == 0 && cost == image_cost) {
                             const std::string stem = file_stem(scene_name);
                             write_pfm(options.output / "images" / (stem + "-truth.pfm"),
                                       crop(truth.ambient_visibility, guard, agreed));
@@ -528,6 +551,8 @@ ReportResult run_report(const ReportOptions& options) {
                             .discrepancy = discrepancy,
                             .turns = turns.value(),
                             .temporal_offset = temporal_offset,
+                            .slice_cost =
+                                marches_slices ? std::optional<SliceCost>(cost) : std::nullopt,
                             .gathers_taps = gathers_taps,
                             .conv_raw = conv_raw,
                             .conv_blur = conv_blur,
@@ -556,10 +581,12 @@ ReportResult run_report(const ReportOptions& options) {
                                                .values = {}},
                                            measured);
                         log(fmt::format(
-                            "{} {} {} n={} layers={} offset={}: sao {:.2f} ms, MAE vs its "
+                            "{} {}{} {} n={} layers={} offset={}: sao {:.2f} ms, MAE vs its "
                             "own converged {}, vs reference {:.4f} raw {:.4f} blurred",
-                            scene_name, method_name, pattern, n, layers, temporal_offset,
-                            row.get("sao_ms").value_or(0.0),
+                            scene_name, method_name,
+                            marches_slices ? fmt::format(" {}x{}", cost.slices, cost.steps)
+                                           : std::string(),
+                            pattern, n, layers, temporal_offset, row.get("sao_ms").value_or(0.0),
                             gathers_taps ? fmt::format("{:.4f}", conv_raw.mae) : std::string("-"),
                             ref_raw.mae, ref_blur.mae));
                         result.rows.push_back(std::move(row));
@@ -567,6 +594,18 @@ ReportResult run_report(const ReportOptions& options) {
                 }
             }
         }
+        measure_flicker_rows(
+            FlickerSetup{.scene = scene,
+                         .scene_name = scene_name,
+                         .settings = settings,
+                         .loader = loader,
+                         .write_headers = [&](const std::string& pattern,
+                                              int n) { write_headers(headers.path(), pattern, n); },
+                         .image_pattern = image_pattern,
+                         .image_taps = image_taps,
+                         .image_layers = image_layers,
+                         .converged_taps = options.converged_taps},
+            options, result.flicker, log);
         for (ReflectionRow& row : measure_reflection_rows(
                  scene_name, scene, settings, options.reflections, options.layers, options.rays,
                  options.seed, options.threads, options.warmup, options.log))
@@ -579,6 +618,10 @@ ReportResult run_report(const ReportOptions& options) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_reflection_table(options.output, options.reflections.enabled, result.reflections);
     write_text(options.output / "report.csv", format_csv(result.rows));
+    if (options.estimators.flicker_frames > 0)
+        write_text(options.output / "flicker.csv", format_flicker_csv(result.flicker));
+    else
+        fs::remove(options.output / "flicker.csv");
     write_text(options.output / "report.json",
                format_json(result.rows, result.info, result.stability, result.float_choices));
     return result;

@@ -62,6 +62,7 @@ void validate(const ReportOptions& options) {
     if (options.float_max_n < 1 || options.float_max_n > 4096)
         throw InputError(
             fmt::format("--float-max-n {} is out of range (1 to 4096)", options.float_max_n));
+    validate(options.estimators);
     validate(options.reflections);
     if (options.output.empty()) throw InputError("report needs --output DIR");
     if (fs::exists(options.output) && !fs::is_directory(options.output))

@@ -47,7 +47,7 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
                 if not points:
                     continue
                 ax.plot([p[0] for p in points], [p[1] for p in points], color="black",
-                        marker="*^sD"[index % 4], markersize=9,
+                        marker="*^sDPX"[index % 6], markersize=9,
                         linestyle="-" if layer == 1 else "--",
                         label=f"{METHOD_LABELS.get(method, method)}, {layer} layer{'s' if layer > 1 else ''}")
         ax.set_xlabel("deep SAO pass (ms, median, mean over scenes)")

@@ -84,7 +84,7 @@ def bias_trend(truth):
             "of it is sampling.")
 
 
-def summary(directory, rows, info, discrepancy_series, images, all_rows=None):
+def summary(directory, rows, info, discrepancy_series, images, all_rows=None, extra=None):
     table = Table(rows)
     patterns = list(dict.fromkeys(r["pattern"] for r in rows))
     taps = sorted({r["taps"] for r in rows})
@@ -446,6 +446,8 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None):
     add("")
 
     estimator_section(all_rows or rows, info, add)
+    if extra:
+        extra(add)  # sections drawn from more than these rows (estimators.py)
     stability_section(directory, add)
     reflection_section(directory, list(dict.fromkeys(r["scene"] for r in all_rows or rows)), add)
 

@@ -7,6 +7,7 @@
 // build's generated headers.
 #include "deepgi/hard_cases.hpp"
 #include "deepgi/image_io.hpp"
+#include "deepgi/report_estimators.hpp"
 #include "deepgi/report_reflections.hpp"
 #include "deepgi/settings.hpp"
 
@@ -172,9 +173,12 @@ struct ReportOptions {
     // the others run the image pattern only: at every tap count where the
     // method gathers the spiral's taps, and once (at the image tap count,
     // which the radiosity gather of the row still uses) for the march,
-    // whose samples DEEPGI_AO_MARCH_RAYS and _STEPS fix.
+    // whose samples DEEPGI_AO_MARCH_RAYS and _STEPS fix, and for gtao and
+    // bitmask at each of estimators.slice_costs.
     std::vector<AoMethod> ao_methods = {AoMethod::solid_angle, AoMethod::published,
                                         AoMethod::march};
+    // The slice estimators' costs and the frame-to-frame change (flicker.csv).
+    EstimatorOptions estimators;
     int width = 320;
     int height = 180;
     int rays = 512;            // reference rays per pixel; 0: deepgi reference's adaptive budgets
@@ -224,6 +228,7 @@ struct ReportResult {
     ReportInfo info;
     std::vector<StabilityRow> stability;
     std::vector<spiral_float::Choice> float_choices;  // one per n, in order
+    std::vector<FlickerRow> flicker;                  // flicker.csv, when measured
     std::vector<ReflectionRow> reflections;
 };
 
