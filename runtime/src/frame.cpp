@@ -32,6 +32,7 @@ using uint = std::uint32_t;
 }  // namespace shader_shared
 using shader_shared::temporal_sequence_u_fixed;
 using shader_shared::temporal_sequence_v_fixed;
+using shader_shared::temporal_sequence_w_fixed;
 
 namespace fs = std::filesystem;
 using shader_shared::FrameConstants;
@@ -139,11 +140,17 @@ void resize_passes(RendererState& state) {
 // This frame's point of the temporal sequence (shaders/temporal_sequence.h),
 // k frames after history was invalidated: (0, 0) on the first frame, then a
 // low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
-// running mean keeps receiving new samples of the integral.
-glm::vec2 temporal_sample(std::uint32_t k) {
+// running mean keeps receiving new samples of the integral. z and w are the
+// radial shifts of the spiral taps (from v) and of the march's rays (from the
+// third coordinate), frac(1/2 + v) - 1/2 in [-1/2, 1/2): 0 on the first frame,
+// so a single frame keeps the taps at (i + 1/2) / n. Taken in fixed point, so
+// they are exact.
+glm::vec4 temporal_sample(std::uint32_t k) {
     constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float
-    return {float(temporal_sequence_u_fixed(k) >> 8u) * to_unit,
-            float(temporal_sequence_v_fixed(k) >> 8u) * to_unit};
+    const auto unit = [&](std::uint32_t fixed) { return float(fixed >> 8u) * to_unit; };
+    const auto shift = [&](std::uint32_t fixed) { return unit(fixed + 0x80000000u) - 0.5f; };
+    return {unit(temporal_sequence_u_fixed(k)), unit(temporal_sequence_v_fixed(k)),
+            shift(temporal_sequence_v_fixed(k)), shift(temporal_sequence_w_fixed(k))};
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
@@ -201,10 +208,10 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.radiosity_term = settings.radiosity.enabled ? 1 : 0;
     constants.environment_term = settings.environment ? 1 : 0;
     constants.reflection_term = reflections_traced(state.scene, settings) ? 1 : 0;
-    const glm::vec2 sample = temporal_sample(state.temporal_frame);
+    const glm::vec4 sample = temporal_sample(state.temporal_frame);
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
-    constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);
+    constants.temporal_sample = sample;
     constants.next_view_projection =
         guard_band_projection(next, settings) * camera_view_matrix(next);
     return constants;
