@@ -25,11 +25,8 @@
 // The hit distance is where the last segment crosses that plane.
 //
 // Rays: Malley's method on the golden-angle (Vogel) disk, ray i at radius
-// sqrt((i + 1/2 + s) / R) and angle 2 pi frac(i / phi), turned by the pixel's
-// rotation. s is this frame's radial shift (temporal_sample.w, from the
-// sequence's third coordinate, in [-1/2, 1/2), 0 on the first frame): over
-// frames the rays sweep the whole disk, so the running mean is the
-// cosine-weighted integral and not its value at R fixed elevations. Steps: evenly spaced over r, offset by one random fraction per
+// sqrt((i + 1/2) / R) and angle 2 pi frac(i / phi), turned by the pixel's
+// rotation. Steps: evenly spaced over r, offset by one random fraction per
 // pixel plus the second coordinate of this frame's temporal sample
 // (temporal_sequence.h), so a still camera's frames fill the step positions
 // evenly, independently of the angle (the first coordinate).
@@ -45,7 +42,7 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
   float occlusion = 0.0;
   for (int i = 0; i < DEEPGI_AO_MARCH_RAYS; ++i) {
     float angle = two_pi * fract(float(i) * 0.618034);
-    vec2 disk = rotation * vec2(cos(angle), sin(angle)) * sqrt((float(i) + 0.5 + frame.temporal_sample.w) / float(DEEPGI_AO_MARCH_RAYS));
+    vec2 disk = rotation * vec2(cos(angle), sin(angle)) * sqrt((float(i) + 0.5) / float(DEEPGI_AO_MARCH_RAYS));
     vec3 direction = tangent * disk.x + bitangent * disk.y + normal * sqrt(max(0.0, 1.0 - dot(disk, disk)));
     float previous = 0.0;
     float hit = -1.0;

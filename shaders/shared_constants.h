@@ -72,8 +72,8 @@ struct FrameConstants {
   float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
 
   // xy: this frame's point (u, v) of the R2 sequence in [0, 1)^2 (temporal_sequence.h);
-  // z: the spiral taps' radial shift frac(1/2 + v) - 1/2, w: the march rays'
-  // frac(1/2 + w_k) - 1/2, both in [-1/2, 1/2) and 0 on the first frame.
+  // z: the radiosity taps' radial shift frac(1/2 + v) - 1/2 in [-1/2, 1/2),
+  // 0 on the first frame; w: 0.
   vec4 temporal_sample;
 
   // 1: compose adds the term, 0: leaves it out (--no-ao, --no-radiosity,

@@ -5,22 +5,15 @@
 // filters average takes this frame's offsets from it: u turns the spiral
 // patterns (SAO, radiosity), v shifts the march's step positions, so that
 // the frames of a still camera fill the (angle, offset) square evenly and
-// never repeat (docs/radiosity.md, "Temporal accumulation"). v also shifts the
-// radiosity spiral's tap radii, which the march does not read.
-// A third coordinate,
-//   w_k = frac(k (sqrt(5) - 1) / 2),
-// shifts the radii of the march's rays: the march already spends u and v.
-// The golden ratio is quadratic, so it is independent of the plastic number's
-// cubic field and (u, v, w) is a Kronecker sequence in three dimensions; of
-// the quadratic irrationals tried it gave the lowest L2 star discrepancy of
-// the first 16 to 256 points, about R2's own in the (u, w) plane.
-// A new pass that accumulates over frames uses the same point
-// (FrameConstants.temporal_sample).
+// never repeat (docs/radiosity.md, "Temporal accumulation"). v also shifts
+// the radiosity spiral's tap radii (FrameConstants.temporal_sample.z), which
+// the march does not read. A new pass
+// that accumulates over frames uses the same point (FrameConstants.temporal_sample).
 //
 // Written once in the common subset of GLSL and C++, like
 // pixel_rotation_hash.h: the includer provides `uint` and
 // DEEPGI_SHARED_FUNCTION. The products are taken modulo 2^32 in fixed point
-// (the multipliers are 2^32 / g, 2^32 / g^2 and 2^32 (sqrt(5) - 1) / 2 rounded), so the fraction is
+// (the multipliers are 2^32 / g and 2^32 / g^2 rounded), so the fraction is
 // exact for every k, where frac(k * 0.7548...) in float would lose the low
 // bits of k after a few thousand frames.
 #ifndef DEEPGI_TEMPORAL_SEQUENCE_H
@@ -28,6 +21,5 @@
 
 DEEPGI_SHARED_FUNCTION uint temporal_sequence_u_fixed(uint k) { return k * 0xc13fa9a9u; }
 DEEPGI_SHARED_FUNCTION uint temporal_sequence_v_fixed(uint k) { return k * 0x91e10da6u; }
-DEEPGI_SHARED_FUNCTION uint temporal_sequence_w_fixed(uint k) { return k * 0x9e3779b9u; }
 
 #endif

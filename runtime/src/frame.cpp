@@ -32,7 +32,6 @@ using uint = std::uint32_t;
 }  // namespace shader_shared
 using shader_shared::temporal_sequence_u_fixed;
 using shader_shared::temporal_sequence_v_fixed;
-using shader_shared::temporal_sequence_w_fixed;
 
 namespace fs = std::filesystem;
 using shader_shared::FrameConstants;
@@ -140,17 +139,15 @@ void resize_passes(RendererState& state) {
 // This frame's point of the temporal sequence (shaders/temporal_sequence.h),
 // k frames after history was invalidated: (0, 0) on the first frame, then a
 // low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
-// running mean keeps receiving new samples of the integral. z and w are the
-// radial shifts of the spiral taps (from v) and of the march's rays (from the
-// third coordinate), frac(1/2 + v) - 1/2 in [-1/2, 1/2): 0 on the first frame,
-// so a single frame keeps the taps at (i + 1/2) / n. Taken in fixed point, so
-// they are exact.
+// running mean keeps receiving new samples of the integral. z is the radial
+// shift of the radiosity spiral's taps, frac(1/2 + v) - 1/2 in [-1/2, 1/2):
+// 0 on the first frame, so a single frame keeps the taps at (i + 1/2) / n.
+// Taken in fixed point, so it is exact.
 glm::vec4 temporal_sample(std::uint32_t k) {
     constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float
     const auto unit = [&](std::uint32_t fixed) { return float(fixed >> 8u) * to_unit; };
-    const auto shift = [&](std::uint32_t fixed) { return unit(fixed + 0x80000000u) - 0.5f; };
-    return {unit(temporal_sequence_u_fixed(k)), unit(temporal_sequence_v_fixed(k)),
-            shift(temporal_sequence_v_fixed(k)), shift(temporal_sequence_w_fixed(k))};
+    const std::uint32_t v = temporal_sequence_v_fixed(k);
+    return {unit(temporal_sequence_u_fixed(k)), unit(v), unit(v + 0x80000000u) - 0.5f, 0.0f};
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
