@@ -106,9 +106,11 @@ void main() {
   // exactly 0 on the first frame: the scale is then exactly 1.
   float radial_shift = frame.temporal_sample.z;
   for (int i = 0; i < RADIOSITY_NUM_TAPS; ++i) {
+    // (i + 1/2 + s) / N = alpha_i (1 + s / (i + 1/2)): one scale for the radius and the offset.
     float radial_scale = 1.0 + radial_shift / (float(i) + 0.5);
     float alpha = RADIOSITY_TAP_ALPHAS[i] * radial_scale;
-    vec2 offset = clamp((rotation * (RADIOSITY_TAP_OFFSETS[i] * radial_scale)) * radius_pixels, vec2(-65536.0), vec2(65536.0));
+    vec2 offset = clamp((rotation * (RADIOSITY_TAP_OFFSETS[i] * radial_scale)) * radius_pixels,
+                        vec2(-65536.0), vec2(65536.0));
     ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
     if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) continue;
     // floor(log2(x)) of x >= 1 is the highest set bit of floor(x) (as sao.frag).
