@@ -98,12 +98,23 @@ void main() {
   vec3 sum = vec3(0.0);
   float coverage = 0.0;  // area: sum of cos(theta_X) w_ij (without r^2)
   int used = 0;
+  // This frame's radial shift s (frame.cpp, from the sequence's v): tap i
+  // sits at alpha = (i + 1/2 + s) / N instead of (i + 1/2) / N, along the
+  // same direction. Over frames s covers [-1/2, 1/2), so the taps' radii
+  // cover [0, 1) uniformly and the weight alpha makes the frames' mean the
+  // area integral over the disk, where fixed radii would average rings. s is
+  // exactly 0 on the first frame: the scale is then exactly 1.
+  float radial_shift = frame.temporal_sample.z;
   for (int i = 0; i < RADIOSITY_NUM_TAPS; ++i) {
-    vec2 offset = clamp((rotation * RADIOSITY_TAP_OFFSETS[i]) * radius_pixels, vec2(-65536.0), vec2(65536.0));
+    // (i + 1/2 + s) / N = alpha_i (1 + s / (i + 1/2)): one scale for the radius and the offset.
+    float radial_scale = 1.0 + radial_shift / (float(i) + 0.5);
+    float alpha = RADIOSITY_TAP_ALPHAS[i] * radial_scale;
+    vec2 offset = clamp((rotation * (RADIOSITY_TAP_OFFSETS[i] * radial_scale)) * radius_pixels,
+                        vec2(-65536.0), vec2(65536.0));
     ivec2 tap = ivec2(floor(vec2(pixel) + 0.5 + offset));
     if (any(lessThan(tap, ivec2(0))) || any(greaterThanEqual(tap, size))) continue;
     // floor(log2(x)) of x >= 1 is the highest set bit of floor(x) (as sao.frag).
-    float steps = min(RADIOSITY_TAP_ALPHAS[i] * radius_pixels / q, 65536.0);
+    float steps = min(alpha * radius_pixels / q, 65536.0);
     int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), max_mip);
     // Level sizes computed, not asked of textureSize() (llvmpipe, sao.frag).
     ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
@@ -126,7 +137,7 @@ void main() {
       float weight = 1.0;
       if (area) {
         float ratio = tap_depth / depth;
-        weight = radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, RADIOSITY_TAP_ALPHAS[i]);
+        weight = radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
         coverage += cos_x * weight;
       }
       sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(tap_clamp));

@@ -5,7 +5,9 @@
 // filters average takes this frame's offsets from it: u turns the spiral
 // patterns (SAO, radiosity), v shifts the march's step positions, so that
 // the frames of a still camera fill the (angle, offset) square evenly and
-// never repeat (docs/radiosity.md, "Temporal accumulation"). A new pass
+// never repeat (docs/radiosity.md, "Temporal accumulation"). v also shifts
+// the radiosity spiral's tap radii (FrameConstants.temporal_sample.z), which
+// the march does not read. A new pass
 // that accumulates over frames uses the same point (FrameConstants.temporal_sample).
 //
 // Written once in the common subset of GLSL and C++, like

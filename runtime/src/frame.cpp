@@ -139,11 +139,15 @@ void resize_passes(RendererState& state) {
 // This frame's point of the temporal sequence (shaders/temporal_sequence.h),
 // k frames after history was invalidated: (0, 0) on the first frame, then a
 // low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
-// running mean keeps receiving new samples of the integral.
-glm::vec2 temporal_sample(std::uint32_t k) {
+// running mean keeps receiving new samples of the integral. z is the radial
+// shift of the radiosity spiral's taps, frac(1/2 + v) - 1/2 in [-1/2, 1/2):
+// 0 on the first frame, so a single frame keeps the taps at (i + 1/2) / n.
+// Taken in fixed point, so it is exact.
+glm::vec4 temporal_sample(std::uint32_t k) {
     constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float
-    return {float(temporal_sequence_u_fixed(k) >> 8u) * to_unit,
-            float(temporal_sequence_v_fixed(k) >> 8u) * to_unit};
+    const auto unit = [&](std::uint32_t fixed) { return float(fixed >> 8u) * to_unit; };
+    const std::uint32_t v = temporal_sequence_v_fixed(k);
+    return {unit(temporal_sequence_u_fixed(k)), unit(v), unit(v + 0x80000000u) - 0.5f, 0.0f};
 }
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
@@ -203,11 +207,11 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.reflection_term = reflections_traced(state.scene, settings) ? 1 : 0;
     // temporal-offset starts the walk at another point: another realisation
     // of every frame's rotation, for measuring run-to-run spread.
-    const glm::vec2 sample =
+    const glm::vec4 sample =
         temporal_sample(state.temporal_frame + std::uint32_t(settings.temporal_offset));
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
-    constants.temporal_sample = glm::vec4(sample, 0.0f, 0.0f);
+    constants.temporal_sample = sample;
     constants.next_view_projection =
         guard_band_projection(next, settings) * camera_view_matrix(next);
     return constants;

@@ -425,6 +425,22 @@ std::vector<spiral::codegen::Tap> rotated_taps(std::vector<spiral::codegen::Tap>
     return taps;
 }
 
+// The taps moved outward by `shift` (in [-1/2, 1/2)) of one radial step, as
+// docs/design.md's section 1 and docs/radiosity.md state the frame's radial
+// shift: tap i at alpha = (i + 1/2 + shift) / n along its own direction.
+std::vector<spiral::codegen::Tap> shifted_taps(std::vector<spiral::codegen::Tap> taps,
+                                               double shift) {
+    const double n = double(taps.size());
+    for (std::size_t i = 0; i < taps.size(); ++i) {
+        const double alpha = (double(i) + 0.5 + shift) / n;
+        const double length = std::hypot(double(taps[i].x), double(taps[i].y));
+        taps[i].x = float(taps[i].x / length * alpha);
+        taps[i].y = float(taps[i].y / length * alpha);
+        taps[i].alpha = float(alpha);
+    }
+    return taps;
+}
+
 // Relative RMS of `e` against `truth` over the pixels where the truth is lit:
 // sqrt(sum (e - truth)^2 / sum truth^2), all channels.
 double relative_rms(const FloatImage& e, const std::vector<double>& truth) {
@@ -486,8 +502,8 @@ TEST_CASE("radiosity: under a still camera E is the running mean of every frame'
 }
 
 TEST_CASE(
-    "radiosity: under a still camera E converges to the gather's mean over all rotations, "
-    "at least as fast as 1/sqrt(frames), and never freezes",
+    "radiosity: under a still camera E converges to the gather's mean over all rotations "
+    "and radial shifts, at least as fast as 1/sqrt(frames), and never freezes",
     "[radiosity]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
@@ -499,16 +515,23 @@ TEST_CASE(
     Renderer renderer(scene, settings, loader);
     renderer.render(scene.default_camera);
     // The oracle: the CPU evaluation of the gather on the read-back inputs,
-    // averaged over 512 evenly spaced extra rotations (not the renderer's
-    // sequence), which stands for the integral over the rotation.
+    // averaged over a grid of 32 extra rotations by 16 radial shifts (not the
+    // renderer's sequence), which stands for the integral over the disk the
+    // taps sweep: the area integral the estimator's weights are made for.
     const GatherInputs inputs = read_inputs(renderer, scene.default_camera, settings);
-    constexpr int rotations = 512;
+    constexpr int rotations = 32, shifts = 16, samples = rotations * shifts;
     std::vector<double> truth;
     for (int j = 0; j < rotations; ++j) {
         const double angle = 6.283185307179586 * (j + 0.5) / rotations;
-        const FloatImage e = reference_gather(inputs, rotated_taps(taps, angle), settings, 0).first;
-        truth.resize(e.pixels.size(), 0.0);
-        for (std::size_t i = 0; i < e.pixels.size(); ++i) truth[i] += e.pixels[i] / rotations;
+        for (int k = 0; k < shifts; ++k) {
+            const double shift = (k + 0.5) / shifts - 0.5;
+            const FloatImage e =
+                reference_gather(inputs, shifted_taps(rotated_taps(taps, angle), shift), settings,
+                                 0)
+                    .first;
+            truth.resize(e.pixels.size(), 0.0);
+            for (std::size_t i = 0; i < e.pixels.size(); ++i) truth[i] += e.pixels[i] / samples;
+        }
     }
     std::vector<double> errors;  // after 1, 4, 16, 64 frames
     FloatImage at_64;
@@ -526,8 +549,8 @@ TEST_CASE(
         }
     }
     WARN("relative RMS of E against the mean over "
-         << rotations
-         << " rotations after 1, 4, 16, "
+         << rotations << " rotations x " << shifts
+         << " radial shifts after 1, 4, 16, "
             "64 frames: "
          << errors[0] << ", " << errors[1] << ", " << errors[2] << ", " << errors[3]
          << "; mean relative change from frame 64 to 72: " << change_after_64);
