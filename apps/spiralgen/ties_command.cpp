@@ -22,6 +22,12 @@ struct TiesArgs {
     std::string format = "text";
 };
 
+// The profile's sum in decimal while it fits 64 bits, else as its two halves.
+std::string sum_text(const spiral::ProfileSum& sum) {
+    if (sum.high < (std::int64_t{1} << 32)) return fmt::format("{}", (sum.high << 30) + sum.low);
+    return fmt::format("{} * 2^30 + {}", sum.high, sum.low);
+}
+
 std::string turns_text(std::int64_t p, std::int64_t m) {
     return m == 1 ? fmt::format("{}", p) : fmt::format("{}/{}", p, m);
 }
@@ -43,7 +49,8 @@ void run_ties(const TiesArgs& args) {
         text = fmt::format(
             "n = {}: {} minimiser{} of D = {} / {} = {:.9g}; the tie-break picks tau = {}\n"
             "band profile: entry k is the worst 4 n^2 m * local error over the sectors whose "
-            "radial extent holds k tap radii (k = 0..n); shown largest first\n",
+            "radial extent holds k tap radii (k = 0..n); the smallest sum is picked, the "
+            "smallest tau among equal sums; entries shown largest first\n",
             args.n, result.ties.size(), result.ties.size() == 1 ? "" : "s", result.scaled,
             result.denominator(), result.value(), turns_text(result.tau, m));
     }
@@ -62,9 +69,10 @@ void run_ties(const TiesArgs& args) {
         constexpr std::size_t kShown = 12;
         const bool cut = sorted.size() > kShown;
         if (cut) sorted.resize(kShown);
-        text += fmt::format("  tau = {:<8} {} mirror {:<8} profile {}{}\n", turns_text(p, m),
-                            picked ? "picked" : "      ", turns_text(mirror, m),
-                            fmt::join(sorted, " "), cut ? " ..." : "");
+        text += fmt::format("  tau = {:<8} {} mirror {:<8} sum {:<10} profile {}{}\n",
+                            turns_text(p, m), picked ? "picked" : "      ", turns_text(mirror, m),
+                            sum_text(spiral::band_profile_sum(profile)), fmt::join(sorted, " "),
+                            cut ? " ..." : "");
     }
     spiral::codegen::write_stdout(text);
 }
