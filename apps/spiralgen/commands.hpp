@@ -37,5 +37,6 @@ void add_table_command(CLI::App& app);
 void add_discrepancy_command(CLI::App& app);
 void add_header_command(CLI::App& app);
 void add_blur_command(CLI::App& app);
+void add_ties_command(CLI::App& app);
 
 }  // namespace spiralgen

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
     spiral_apps::use_help_formatter(app);
     spiralgen::add_table_command(app);
     spiralgen::add_discrepancy_command(app);
+    spiralgen::add_ties_command(app);
     spiralgen::add_header_command(app);
     spiralgen::add_blur_command(app);
     spiral_cli::require_plain_numbers(app);

@@ -164,8 +164,8 @@ std::string format_gather_header(const GatherSpec& spec, const Provenance& prove
             fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; ties with the optimum)",
                         pass, n, chosen_tau);
         verdict = fmt::format(
-            "// tau = {} was set by hand. It is not the smallest optimal tau ({}) but its\n"
-            "// discrepancy is the same: {}.\n",
+            "// tau = {} was set by hand. It is not the tie-break's choice among the optimal\n"
+            "// tau ({}, docs/design.md, section 2) but its discrepancy is the same: {}.\n",
             chosen_tau, optimum_tau, chosen_text);
     } else {
         inputs = fmt::format("pass \"{}\", taps = {}, tau = {} (set by hand; NOT the optimum)",

@@ -108,11 +108,10 @@ std::string inputs_text(const std::vector<SearchResult>& results) {
         results.back().n - results.front().n + 1 == static_cast<int>(results.size());
     const std::int64_t m = results.front().m;
     const std::string space =
-        m == 1 ? "tau*(n), the smallest tau in [1, n]"
-               : fmt::format("tau*(n) = p / {0}, the smallest p in [1, {0} n]", m);
+        m == 1 ? "tau*(n) in [1, n]" : fmt::format("tau*(n) = p / {0} with p in [1, {0} n]", m);
     return fmt::format(
-        "{} minimising the annular-sector discrepancy (docs/design.md, section 2), for n = "
-        "{}..{}{}",
+        "{} minimising the annular-sector discrepancy, among ties the one whose band profile "
+        "is preferred (docs/design.md, section 2), for n = {}..{}{}",
         space, results.front().n, results.back().n, contiguous ? "" : " (with gaps)");
 }
 

@@ -51,11 +51,12 @@ private:
     std::vector<std::int64_t> table_;
 };
 
-}  // namespace
-
-Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m) {
-    detail::require_valid(n, tau, m);
-    const detail::SpiralLattice lattice(n, tau, m);
+// Calls visit(sector, excess) for every closed and open sector whose edges lie
+// on tap coordinates or the domain edges, excess being 4 n^2 m times its
+// signed local error (positive: too many taps for a closed sector, too few
+// for an open one; the other sign never attains the maximum).
+template <class Visit>
+void for_each_sector(const detail::SpiralLattice& lattice, Visit&& visit) {
     const PrefixCounts counts(lattice);
     const std::int64_t two_n = lattice.two_n, circle = lattice.circle, four_nm = 2 * circle;
 
@@ -70,16 +71,10 @@ Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m) {
     angular_edges.erase(std::unique(angular_edges.begin(), angular_edges.end()),
                         angular_edges.end());
 
-    Discrepancy result{n, tau, -1, {}, m};
     auto consider = [&](const Sector& sector) {
-        const std::int64_t excess = sector.closed ? four_nm * sector.count - sector.scaled_area()
-                                                  : sector.scaled_area() - four_nm * sector.count;
-        if (excess > result.scaled) {
-            result.scaled = excess;
-            result.worst = sector;
-        }
+        visit(sector, sector.closed ? four_nm * sector.count - sector.scaled_area()
+                                    : sector.scaled_area() - four_nm * sector.count);
     };
-
     for (std::size_t lo = 0; lo < radial_edges.size(); ++lo) {
         for (std::size_t hi = lo; hi < radial_edges.size(); ++hi) {
             const std::int64_t a = radial_edges[lo], b = radial_edges[hi];
@@ -101,7 +96,40 @@ Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m) {
             }
         }
     }
+}
+
+// Tap radii 2i + 1 (all odd values in [0, 2n]) within [lo, hi].
+std::int64_t radii_within(std::int64_t lo, std::int64_t hi) {
+    return lo > hi ? 0 : (hi + 1) / 2 - lo / 2;
+}
+
+}  // namespace
+
+Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    const detail::SpiralLattice lattice(n, tau, m);
+    Discrepancy result{n, tau, -1, {}, m};
+    for_each_sector(lattice, [&](const Sector& sector, std::int64_t excess) {
+        if (excess > result.scaled) {
+            result.scaled = excess;
+            result.worst = sector;
+        }
+    });
     return result;
+}
+
+std::vector<std::int64_t> band_profile_brute_force(int n, std::int64_t tau, std::int64_t m) {
+    detail::require_valid(n, tau, m);
+    const detail::SpiralLattice lattice(n, tau, m);
+    std::vector<std::int64_t> profile(static_cast<std::size_t>(n) + 1, -1);
+    for_each_sector(lattice, [&](const Sector& sector, std::int64_t excess) {
+        const std::int64_t radii = sector.closed
+                                       ? radii_within(sector.radial_lo, sector.radial_hi)
+                                       : radii_within(sector.radial_lo + 1, sector.radial_hi - 1);
+        std::int64_t& worst = profile[static_cast<std::size_t>(radii)];
+        worst = std::max(worst, excess);
+    });
+    return profile;
 }
 
 }  // namespace spiral

@@ -20,6 +20,20 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t boun
                       Sector* worst_sector, std::int64_t* exceeding_band = nullptr,
                       std::int64_t known_lower_bound = 0, bool allow_lanes = true);
 
+// Radial width of the widest open band holding `taps` consecutive taps
+// (0 <= taps <= n): the canonical open band of the sweep (fast.cpp).
+std::int64_t band_open_width(std::int64_t n, std::int64_t taps);
+
+// The worst excess of the band of `taps` consecutive taps whose distinct
+// angles (ascending) and multiplicities are given, closed and open sectors
+// together; count_unit is 4nm and circle 2nm.
+std::int64_t band_excess(const std::vector<std::int64_t>& angles,
+                         const std::vector<std::int32_t>& taps_at, std::int64_t taps,
+                         std::int64_t open_width, std::int64_t count_unit, std::int64_t circle);
+
+// evaluate_bands runs eight bands in 32-bit lanes when 4 n^2 m is at most this.
+inline constexpr std::int64_t kBandLaneLimit = std::int64_t{1} << 28;
+
 struct BandScratch {
     std::vector<std::int64_t> sorted, angles;
     std::vector<std::int32_t> taps_at, bucket, lane_angle, lane_tap;
@@ -39,5 +53,9 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m, std::int64_t
 // the bands are evaluated one by one.
 void evaluate_bands(int n, std::int64_t tau, std::int64_t m, const std::int64_t* taps, int count,
                     BandScratch& scratch, std::int64_t* excess);
+
+// band_profile (optimizer.hpp); allow_lanes = false forces the one-band-at-a-
+// time sweep that n above 8192 takes, so tests can compare the two.
+std::vector<std::int64_t> band_profile(int n, std::int64_t tau, std::int64_t m, bool allow_lanes);
 
 }  // namespace spiral::detail

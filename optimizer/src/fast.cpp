@@ -145,6 +145,8 @@ std::array<BandWorst, 2> scan_band(const std::vector<std::int64_t>& angles,
             worst_open(open_scan, count_unit, circle, m)};
 }
 
+}  // namespace
+
 std::int64_t band_open_width(std::int64_t n, std::int64_t m) {
     return m <= n - 2 ? 2 * m + 2 : (m == n - 1 ? 2 * n - 1 : 2 * n);
 }
@@ -190,6 +192,8 @@ std::int64_t band_excess(const std::vector<std::int64_t>& angles,
     return worst;
 }
 
+namespace {
+
 // ---------------------------------------------------------------------------
 // Eight bands in one pass.
 //
@@ -222,7 +226,7 @@ std::int64_t band_excess(const std::vector<std::int64_t>& angles,
 
 constexpr int kLanes = 8;
 using Lanes = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
-constexpr std::int64_t kLaneLimit = std::int64_t{1} << 28;
+constexpr std::int64_t kLaneLimit = kBandLaneLimit;
 constexpr std::int32_t kLaneInf = std::int32_t{1} << 30;
 
 // Per lane: taps in the band, closed width, open width (inputs); best closed

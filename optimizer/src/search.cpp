@@ -199,7 +199,8 @@ SearchResult search(int n, const SearchOptions& options) {
     }
     std::sort(result.ties.begin(), result.ties.end());
     result.ties.erase(std::unique(result.ties.begin(), result.ties.end()), result.ties.end());
-    result.tau = result.ties.front();
+    // The second, exact criterion among the minimisers (ties.cpp).
+    result.tau = result.ties.size() == 1 ? result.ties.front() : break_tie(n, result.ties, m);
     return result;
 }
 

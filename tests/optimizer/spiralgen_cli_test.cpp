@@ -135,7 +135,8 @@ TEST_CASE("spiralgen: bad input gives one line on stderr and exit status 2", "[c
         "discrepancy --n 16 --turns 0", "discrepancy --n 16 --turns -2",
         "discrepancy --n 16 --turns 16.5", "discrepancy --n 16 --turns nan",
         "discrepancy --n 16 --turns inf", "discrepancy --n 16 --turns six",
-        "discrepancy --n 16 --turns 3 --tau 3", "discrepancy --n 16 --turns 1e-30");
+        "discrepancy --n 16 --turns 3 --tau 3", "discrepancy --n 16 --turns 1e-30", "ties",
+        "ties --n 0", "ties --n 70000", "ties --n 9 --format json", "ties --n 9 --denominator 0");
     INFO("spiralgen " << arguments);
     const auto result = spiralgen(arguments);
     CHECK(result.status == 2);
@@ -145,7 +146,7 @@ TEST_CASE("spiralgen: bad input gives one line on stderr and exit status 2", "[c
 }
 
 TEST_CASE("spiralgen: --help works on every subcommand", "[cli]") {
-    const std::string command = GENERATE(as<std::string>{}, "table", "discrepancy");
+    const std::string command = GENERATE(as<std::string>{}, "table", "discrepancy", "ties");
     const auto result = spiralgen(command + " --help");
     CHECK(result.status == 0);
     CHECK(result.out.find("--format") != std::string::npos);
@@ -270,4 +271,41 @@ TEST_CASE("spiralgen: --compare-published verdicts agree with the exact evaluato
     const auto refused = spiralgen("table --compare-published --max-n 40");
     CHECK(refused.status == 2);
     CHECK(refused.err.find("--max-n") != std::string::npos);
+}
+
+TEST_CASE("spiralgen: ties lists every minimiser with its profile and marks the search's pick",
+          "[cli][ties]") {
+    const int n = GENERATE(6, 11, 49);
+    const auto result = spiralgen("ties --n " + std::to_string(n) + " --format csv");
+    REQUIRE(result.status == 0);
+    const auto optimum = spiral::search(n);
+    std::istringstream lines(result.out);
+    std::string line;
+    std::getline(lines, line);
+    CHECK(line == "n,tau,p,m,picked,mirror,K,profile");
+    std::vector<int> listed;
+    int picked = 0;
+    while (std::getline(lines, line)) {
+        std::istringstream fields(line);
+        std::string n_text, tau, p, m, pick, mirror, k, profile;
+        std::getline(fields, n_text, ',');
+        std::getline(fields, tau, ',');
+        std::getline(fields, p, ',');
+        std::getline(fields, m, ',');
+        std::getline(fields, pick, ',');
+        std::getline(fields, mirror, ',');
+        std::getline(fields, k, ',');
+        std::getline(fields, profile);
+        listed.push_back(std::stoi(p));
+        if (pick == "1") picked = std::stoi(p);
+        CHECK(std::stoi(mirror) == n - std::stoi(p));
+        CHECK(std::stoll(k) == optimum.scaled);
+        // The profile as the library computes it, k = 0..n.
+        std::ostringstream expected;
+        const auto entries = spiral::band_profile(n, std::stoi(p));
+        for (std::size_t i = 0; i < entries.size(); ++i) expected << (i ? " " : "") << entries[i];
+        CHECK(profile == expected.str());
+    }
+    CHECK(listed == optimum.ties);
+    CHECK(picked == optimum.tau);
 }

@@ -16,6 +16,7 @@
 // p of tau = p / m.
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -79,9 +80,42 @@ Discrepancy discrepancy_brute_force(int n, std::int64_t tau, std::int64_t m = 1)
 // rejects a candidate whose bound exceeds the best K found without scanning it.
 std::int64_t discrepancy_lower_bound(int n, std::int64_t tau, std::int64_t m = 1);
 
+// The worst local error of each radial band (docs/design.md, section 2,
+// "Ties"): entry k, 0 <= k <= n, is the largest 4 n^2 m * local error over
+// the sectors whose radial extent holds exactly k tap radii (a closed sector
+// counts the radii in [a, b], an open one those in (a, b)). Its largest entry
+// is K. O(n^2) time, O(n) memory; same requirements and exceptions as
+// discrepancy().
+std::vector<std::int64_t> band_profile(int n, std::int64_t tau, std::int64_t m = 1);
+
+// The oracle for band_profile: every sector of discrepancy_brute_force, filed
+// by the tap radii it holds. O(n^4); for tests only.
+std::vector<std::int64_t> band_profile_brute_force(int n, std::int64_t tau, std::int64_t m = 1);
+
+// The sum of a band profile's entries, high * 2^30 + low with 0 <= low < 2^30:
+// exact, though it can pass 2^63 for the largest n and m (entries are
+// non-negative and at most 2^60, at most 2^16 of them). Compares as the sum.
+struct ProfileSum {
+    std::int64_t high = 0;
+    std::int64_t low = 0;
+    auto operator<=>(const ProfileSum&) const = default;
+};
+ProfileSum band_profile_sum(const std::vector<std::int64_t>& profile);
+
+// The tie-break among exact minimisers (docs/design.md, section 2, "Ties"):
+// profile a is preferred to profile b when its sum is smaller, that is when
+// the worst local errors of the radial bands are smaller on average.
+bool tie_break_prefers(const std::vector<std::int64_t>& a, const std::vector<std::int64_t>& b);
+
+// The tie-break winner among `ties`, numerators p of minimisers of D(n, p / m)
+// (any order, not empty): the p whose band profile is preferred, the smallest
+// p among equal profiles. Mirror images p and nm - p always have equal
+// profiles. Throws std::invalid_argument for an empty list or invalid n, m.
+int break_tie(int n, const std::vector<int>& ties, std::int64_t m = 1);
+
 struct SearchResult {
     int n = 0;
-    int tau = 0;              // smallest minimiser p in [1, nm] (turns p / m)
+    int tau = 0;              // the minimiser p in [1, nm] break_tie picks (turns p / m)
     std::vector<int> ties;    // every minimiser in [1, nm], ascending
     std::int64_t scaled = 0;  // K of the minimum
     std::int64_t m = 1;       // denominator of the turns searched
@@ -99,7 +133,8 @@ struct SearchOptions {
 };
 
 // The p in [1, nm] minimising D(n, p / m), m = options.denominator; m = 1 is
-// the integer search over tau in [1, n]. Exhaustive (branch and bound never
+// the integer search over tau in [1, n]. Every minimiser is in ties; tau is
+// the one break_tie picks. Exhaustive (branch and bound never
 // drops a candidate that could tie), so the result does not depend on jobs.
 // Throws std::invalid_argument for n outside [1, kMaxTaps], m < 1,
 // 4 n^2 m > kMaxScaledDenominator or n m > kMaxSearchCandidates.
