@@ -74,7 +74,8 @@ struct FrameConstants {
   vec4 temporal_sample;  // xy: this frame's point of the R2 sequence in [0, 1)^2 (temporal_sequence.h); zw: 0
 
   // 1: compose adds the term, 0: leaves it out (--no-ao, --no-radiosity,
-  // --no-environment; reflection: the reflection pass runs this frame).
+  // --no-environment; reflection: the reflection pass runs this frame, which
+  // debug_view's reflection hit view also reads).
   int ao_term;
   int radiosity_term;
   int environment_term;
