@@ -181,12 +181,9 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.internal_size = {float(layout.internal_width), float(layout.internal_height),
                                1.0f / float(layout.internal_width),
                                1.0f / float(layout.internal_height)};
-    const float depth_view_range =
-        std::max(glm::length(state.scene.bounds.max - state.scene.bounds.min), 1e-3f);
     constants.min_separation = settings.min_separation;
     constants.exposure = settings.exposure;
     constants.shadow_normal_offset = shadow.normal_offset;
-    constants.depth_view_range = depth_view_range;
     constants.guard_band = layout.guard;
     constants.viewport_width = settings.width;
     constants.viewport_height = settings.height;
