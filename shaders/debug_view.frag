@@ -25,9 +25,9 @@ layout(binding = 18) uniform sampler2D radiosity_layer1;
 layout(binding = 9) uniform sampler2D frame_statistics;
 
 // The reflection pass's hit texture, bound only while that pass runs
-// (debug_view_pass.cpp declares unit 5 for it).
+// (debug_view_pass.cpp declares unit 5 for it; frame.reflection_term says
+// whether it does).
 layout(binding = 5) uniform sampler2D reflection_hit;
-layout(location = 1) uniform int reflections_traced;
 
 layout(location = 0) out vec4 out_colour;
 
@@ -35,7 +35,7 @@ layout(location = 0) out vec4 out_colour;
 // blue, layer 0 green, layer 1 red; other surfaces dim grey.
 vec3 reflection_hit_colour(ivec2 pixel) {
   vec3 grey = vec3(0.3 * dot(srgb_decode(texelFetch(gbuffer_albedo, ivec3(pixel, 0), 0).rgb), vec3(1.0 / 3.0)));
-  if (reflections_traced == 0) return grey;
+  if (frame.reflection_term == 0) return grey;
   float layer = texelFetch(reflection_hit, pixel, 0).z;
   if (layer < -1.5) return grey;
   if (layer < -0.5) return vec3(0.1, 0.2, 0.9);

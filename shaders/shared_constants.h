@@ -59,7 +59,7 @@ struct FrameConstants {
   float min_separation;        // m, layer 1 behind layer 0
   float exposure;              // the setting; -1: auto (frame_statistics.comp measures it)
   float shadow_normal_offset;  // m along the normal before the shadow lookup
-  float depth_view_range;      // m, the scene diagonal (unread: depth views use frame_statistics)
+  float unused0;               // keeps the row whole (std140)
 
   int guard_band;       // px on every side
   int viewport_width;   // px
@@ -77,7 +77,8 @@ struct FrameConstants {
   vec4 temporal_sample;
 
   // 1: compose adds the term, 0: leaves it out (--no-ao, --no-radiosity,
-  // --no-environment; reflection: the reflection pass runs this frame).
+  // --no-environment; reflection: the reflection pass runs this frame, which
+  // debug_view's reflection hit view also reads).
   int ao_term;
   int radiosity_term;
   int environment_term;

@@ -185,12 +185,9 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.internal_size = {float(layout.internal_width), float(layout.internal_height),
                                1.0f / float(layout.internal_width),
                                1.0f / float(layout.internal_height)};
-    const float depth_view_range =
-        std::max(glm::length(state.scene.bounds.max - state.scene.bounds.min), 1e-3f);
     constants.min_separation = settings.min_separation;
     constants.exposure = settings.exposure;
     constants.shadow_normal_offset = shadow.normal_offset;
-    constants.depth_view_range = depth_view_range;
     constants.guard_band = layout.guard;
     constants.viewport_width = settings.width;
     constants.viewport_height = settings.height;
@@ -233,11 +230,14 @@ void render_frame(RendererState& state, const Camera& camera, const Camera& next
         frame.previous_camera = camera;
         state.temporal_frame = 0;
     }
-    // Predict's next camera continues the motion of the last two frames (none
-    // after an invalidation, as previous_camera is then this camera).
-    const Camera next = state.in_use.generator == Generator::predict
-                            ? extrapolate_camera(frame.previous_camera, camera)
-                            : next_camera;
+    // Predict's next camera continues the motion of the last two frames. The
+    // first frame after an invalidation has one camera and so no velocity: it
+    // predicts a still camera (this one), and the frame after peels against
+    // that, which is what `previous` does.
+    const bool predicts = state.in_use.generator == Generator::predict;
+    const Camera next = !predicts               ? next_camera
+                        : frame.history_valid() ? extrapolate_camera(frame.previous_camera, camera)
+                                                : camera;
     const FrameConstants constants =
         make_frame_constants(state, camera, frame.previous_camera, next);
     glNamedBufferSubData(state.frame_constants.get(), 0, sizeof(constants), &constants);

@@ -21,7 +21,7 @@ namespace deepgi::shader_shared {
 static_assert(offsetof(FrameConstants, camera_ray_scale) == 5 * 64);
 static_assert(offsetof(FrameConstants, internal_size) == 5 * 64 + 6 * 16);
 static_assert(offsetof(FrameConstants, min_separation) == 5 * 64 + 7 * 16);
-static_assert(offsetof(FrameConstants, depth_view_range) == 5 * 64 + 7 * 16 + 12);
+static_assert(offsetof(FrameConstants, shadow_normal_offset) == 5 * 64 + 7 * 16 + 8);
 static_assert(offsetof(FrameConstants, guard_band) == 5 * 64 + 8 * 16);
 static_assert(offsetof(FrameConstants, generator) == 5 * 64 + 8 * 16 + 12);
 static_assert(offsetof(FrameConstants, light_kind) == 5 * 64 + 9 * 16);

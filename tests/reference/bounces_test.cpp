@@ -48,7 +48,7 @@ int exit_status(const std::string& command) {
 // point of either plane has the same E_k. From a point, the other plane
 // within the radius R is a cap of the hemisphere with cos(theta) > h / R, of
 // form factor F = 1 - (h/R)^2 (the emitting-ceiling case of
-// reference_test.cpp); nothing else is within R. So, with L_k the outgoing
+// reference_irradiance_test.cpp); nothing else is within R. So, with L_k the outgoing
 // radiance of the K-bounce model and E_0 = 0,
 //     L_k = L_e + rho / pi * E_(k-1),   E_k = pi F L_k,
 // hence L_k = L_e + rho F L_(k-1), and
@@ -84,7 +84,7 @@ TEST_CASE("reference: K bounces between facing planes follow the geometric serie
             // is at least 0.15^3 = 0.34% of E (blue, K = 4), 8% or more on red.
             REQUIRE(s.standard_error[c] <= 0.01 * expected);
             // Five standard errors, plus 0.1% of E for the rays' offset off
-            // the planes (as in reference_test.cpp).
+            // the planes (as in reference_test_support.hpp).
             REQUIRE(s.irradiance[c] ==
                     Approx(expected).margin(5 * s.standard_error[c] + 1e-3 * expected));
             // Each bounce adds what the series adds, in standard errors.

@@ -30,7 +30,7 @@ glm::dvec3 sum(const deepgi::IrradianceSample& s) {
 // An emitting wall (z = -2, facing +z, x in [-0.5, 0.5], height 0.6) over a
 // floor, X on the floor c in front of it, no key light: all of E comes from
 // the wall, pi L F with the form factor of the rectangle (as in
-// reference_test.cpp). The camera at (0, 1, 2) looks down -z.
+// reference_irradiance_test.cpp). The camera at (0, 1, 2) looks down -z.
 //  - Nothing in between: the wall is the nearest front face along every
 //    camera ray to it, so layer 0 holds all of E.
 //  - A black board at z = -1 (3 m deep along the camera rays, the wall 4 m)

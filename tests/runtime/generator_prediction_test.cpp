@@ -1,7 +1,8 @@
 // The delay and predict generators (one pass with a third layer drawn by the
 // next frame's camera) against peel, the two-pass oracle that needs no
 // history: delay along each scene's camera path, predict along a path of
-// constant velocity, and the memory their third layer adds.
+// constant velocity and after its history is dropped, and the memory their
+// third layer adds.
 #include "../support/process.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/frame_limits.hpp"
@@ -246,4 +247,81 @@ TEST_CASE("generator prediction: moving to or from delay reallocates and drops h
     // delay -> predict keeps the third layer and the history.
     renderer.set_settings(small_settings(Generator::predict));
     CHECK(renderer.history_valid());
+}
+
+TEST_CASE("generator prediction: after a cut or a resize predict starts from a still camera",
+          "[runtime][gbuffer][prediction]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("atrium");
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const CameraPath& path = scene.camera_path;
+    // Moving frames before the history is dropped, so a predictor that kept
+    // the camera from before the drop would extrapolate a long, wrong step.
+    const Camera before[] = {camera_on_path(path, 3), camera_on_path(path, 4),
+                             camera_on_path(path, 5)};
+    // Where the history starts again: far along the path.
+    const Camera after = camera_on_path(path, 2 * path.frames_per_key + 7);
+    const Camera after_moved = camera_on_path(path, 2 * path.frames_per_key + 8);
+    auto finite = [](const FloatImage& image) {
+        return std::all_of(image.pixels.begin(), image.pixels.end(),
+                           [](float v) { return std::isfinite(v); });
+    };
+    for (const bool cut : {true, false}) {
+        // The second frame still, and moved: either way it has no earlier
+        // prediction than the first frame's, made with no velocity, so its
+        // layer 1 peels against the first frame's layer 0 at the same pixel,
+        // which is `previous`.
+        for (const bool moved : {false, true}) {
+            INFO((cut ? "cut" : "resize") << ", second frame " << (moved ? "moved" : "still"));
+            Renderer predict(scene, small_settings(Generator::predict), loader);
+            Renderer previous(scene, small_settings(Generator::previous), loader);
+            for (Renderer* renderer : {&predict, &previous}) {
+                for (const Camera& camera : before) renderer->render(camera);
+                if (cut) {
+                    renderer->render(after, CameraMotion::cut);
+                } else {
+                    RenderSettings resized = renderer->settings();
+                    resized.width = 144;
+                    resized.height = 80;
+                    renderer->set_settings(resized);
+                    REQUIRE(!renderer->history_valid());
+                    renderer->render(after);
+                }
+            }
+            // The first frame: no history, no layer 1, as for previous.
+            const FloatImage first = predict.read_pass_output("gbuffer-depth-layer1");
+            CHECK(std::all_of(first.pixels.begin(), first.pixels.end(),
+                              [](float v) { return v == 0.0f; }));
+            // Its prediction is this frame's layer 0 (a still camera).
+            const Comparison still =
+                compare(predict.read_pass_output("gbuffer-depth-prediction"),
+                        predict.read_pass_output("gbuffer-depth-layer0"), 1e-5f);
+            CHECK(still.presence == 0);
+            CHECK(still.values == 0);
+
+            const Camera second = moved ? after_moved : after;
+            predict.render(second);
+            previous.render(second);
+            for (const char* output : {"gbuffer-normal-layer1", "gbuffer-albedo-layer1"}) {
+                INFO(output);
+                const Comparison c = compare(predict.read_pass_output(output),
+                                             previous.read_pass_output(output), 0.0f);
+                CHECK(c.presence == 0);
+                CHECK(c.values == 0);
+            }
+            const FloatImage layer1 = predict.read_pass_output("gbuffer-depth-layer1");
+            const Comparison c =
+                compare(layer1, previous.read_pass_output("gbuffer-depth-layer1"), 1e-5f);
+            CHECK(c.presence == 0);
+            CHECK(c.values == 0);
+            // Layer 1 exists, and nothing is infinite or NaN.
+            CHECK(std::any_of(layer1.pixels.begin(), layer1.pixels.end(),
+                              [](float v) { return v > 0.0f; }));
+            for (const char* output : {"gbuffer-depth-layer0", "gbuffer-depth-layer1",
+                                       "gbuffer-depth-prediction", "compose-radiance"}) {
+                INFO(output);
+                CHECK(finite(predict.read_pass_output(output)));
+            }
+        }
+    }
 }

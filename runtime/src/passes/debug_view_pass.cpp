@@ -46,7 +46,8 @@ public:
                                        {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
                                        {irradiance_layer1_binding, "radiosity.irradiance.layer1"},
                                        {statistics_binding, "frame_statistics"}};
-        // The hit layer of each mirror ray.
+        // The hit layer of each mirror ray. The declaration is made before any
+        // value exists, so it asks the settings, as compose does.
         if (reflections_traced(*scene_, settings))
             reads.push_back({reflection_hit_binding, "reflection.hit"});
         // Which materials are mirrors (reflections_traced).
@@ -61,7 +62,8 @@ public:
     void run(FrameResources& frame) override {
         begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
                          frame.settings->height);
-        glProgramUniform1i(program_.get(), 1, reflections_traced(*scene_, *frame.settings) ? 1 : 0);
+        // Whether the reflection pass ran is the frame's decision
+        // (FrameConstants.reflection_term), which the shader reads as compose does.
         glUseProgram(program_.get());
         draw_fullscreen_triangle(frame.empty_vertex_array);
     }
