@@ -39,7 +39,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 29> numeric_table = {{
+const std::array<NumericSetting, 30> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -297,6 +297,19 @@ const std::array<NumericSetting, 29> numeric_table = {{
      .slider_max = float(limits::max_radiosity_layers),
      .effect = drop_history,
      DEEPGI_INT_FIELD(radiosity.layers)},
+    {.name = "radiosity-visibility-steps",
+     .label = "visibility steps",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: points marched from each pixel to each sample to test that no "
+             "stored surface hides it (0: no test)",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = float(limits::max_radiosity_visibility_steps),
+     .slider_min = 0.0f,
+     .slider_max = 16.0f,
+     .effect = drop_history,
+     DEEPGI_INT_FIELD(radiosity.visibility_steps)},
     {.name = "blur-depth-tolerance",
      .label = "depth tolerance",
      .group = "blur",
