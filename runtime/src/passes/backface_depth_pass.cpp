@@ -46,10 +46,10 @@ public:
             declaration.value_reads.push_back("sao.layers");
         if (reflections_traced(*scene_, settings))
             declaration.value_reads.push_back("reflection.layers");
-        if (settings.radiosity.visibility_steps > 0) {
-            declaration.value_reads.push_back("radiosity.visibility_steps");
-            declaration.value_reads.push_back("radiosity.layers");
-        }
+        // Whether the radiosity gather tests visibility decides whether it
+        // reads back faces at all, so these are read whatever their values.
+        declaration.value_reads.push_back("radiosity.visibility_steps");
+        declaration.value_reads.push_back("radiosity.layers");
         return declaration;
     }
 
