@@ -30,8 +30,8 @@ struct RadiosityGatherParameters {
 
   int layers;  // 1 or 2 layers gathered
   int method;  // DEEPGI_RADIOSITY_METHOD_*
-  float unused0;
-  float unused1;
+  int visibility_steps;        // points marched from X to each sample (0: no visibility test)
+  float visibility_thickness;  // m of solid behind a stored surface with no back face
 };
 
 // The radiosity prepare pass (radiosity_prepare.comp).

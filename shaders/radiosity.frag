@@ -60,6 +60,10 @@ layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
 
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
+// radiosity_sample_visible(): with visibility steps, a sample that other
+// stored geometry hides from X adds nothing (docs/radiosity.md).
+#include "radiosity_visibility.glsl"
+
 
 // w_ij above without its factor r^2 (the caller's), for a sample that passed
 // the facing tests. A patch seen edge-on stands for unbounded area: its weight is
@@ -134,6 +138,9 @@ void main() {
       vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
       float cos_y = -dot(w, tap_normal);
       if (cos_y <= 0.0) continue;
+      if (gather.visibility_steps > 0 &&
+          !radiosity_sample_visible(position, y, gather.layers, gather.visibility_steps, gather.visibility_thickness))
+        continue;
       float weight = 1.0;
       if (area) {
         float ratio = tap_depth / depth;

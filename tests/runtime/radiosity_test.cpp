@@ -1,4 +1,5 @@
 // Deep radiosity gather against its CPU evaluation and its invariants.
+#include "radiosity_visibility_mirror.hpp"
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
 
@@ -89,11 +90,13 @@ int mip_levels(const RenderSettings& settings, int width, int height) {
 //   area:      E = 2 pi / N * sum min(B cos_x w, clamp), c = min(1, 2 / N * sum cos_x w),
 //              w = alpha_i (z_Y / z_X)^2 cos(phi_Y) cos_y r^2 / (|v|^2 max(cos(view_Y), 0.1))
 // with phi_Y the angle between Y's eye ray and the optical axis and view_Y the
-// angle between Y's normal and the direction from Y to the eye.
+// angle between Y's normal and the direction from Y to the eye. With
+// `visibility`, a sample that passes the facing tests counts only where
+// sample_visible() finds no stored surface between X and Y.
 std::pair<FloatImage, FloatImage> reference_gather(const GatherInputs& inputs,
                                                    const std::vector<spiral::codegen::Tap>& taps,
-                                                   const RenderSettings& render_settings,
-                                                   int layer) {
+                                                   const RenderSettings& render_settings, int layer,
+                                                   const VisibilityInputs* visibility = nullptr) {
     const RadiositySettings& settings = render_settings.radiosity;
     const int width = inputs.depth[0].width;
     const int height = inputs.depth[0].height;
@@ -145,6 +148,8 @@ std::pair<FloatImage, FloatImage> reference_gather(const GatherInputs& inputs,
                     const float cos_x = glm::dot(w, normal);
                     const float cos_y = -glm::dot(w, tap_normal);
                     if (cos_x <= 0.0f || cos_y <= 0.0f) continue;
+                    if (visibility && !sample_visible(*visibility, position, tap_position))
+                        continue;
                     float weight = 1.0f;
                     if (settings.method == RadiosityMethod::area) {
                         const glm::vec3 to_eye = -glm::normalize(tap_position);
@@ -248,6 +253,69 @@ TEST_CASE("radiosity: the gather matches its CPU evaluation on read-back inputs"
                 // (atrium's layer 1 is mostly hidden floor: about 1% is lit there).
                 CHECK(lit > pixels / 200);
             }
+        }
+    }
+}
+
+TEST_CASE("radiosity: with the visibility test the gather matches its CPU evaluation",
+          "[radiosity]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const auto taps = build_time_radiosity_taps();
+    // Atrium's columns and arches hide part of what the layers hold from the
+    // floor; warehouse's shelves hide most of it.
+    for (const char* scene_name : {"atrium", "warehouse"}) {
+        const Scene scene = make_builtin_scene(scene_name);
+        RenderSettings settings = test_settings();
+        settings.radiosity.radius = 6.0f;
+        settings.radiosity.visibility_steps = 4;
+        Renderer renderer(scene, settings, loader);
+        renderer.render(scene.default_camera);
+        const GatherInputs inputs = read_inputs(renderer, scene.default_camera, settings);
+        VisibilityInputs visibility{.depth = inputs.depth,
+                                    .normal = inputs.normal,
+                                    .back_face = {},
+                                    .ray_scale = inputs.ray_scale,
+                                    .near_plane = scene.default_camera.near_plane,
+                                    .layers = settings.radiosity.layers,
+                                    .steps = settings.radiosity.visibility_steps,
+                                    .thickness = settings.ao.thickness};
+        for (int layer = 0; layer < 2; ++layer)
+            visibility.back_face[layer] =
+                renderer.read_pass_output(fmt::format("backface-depth-layer{}", layer));
+        for (int layer = 0; layer < 2; ++layer) {
+            const auto [expected, expected_confidence] =
+                reference_gather(inputs, taps, settings, layer, &visibility);
+            const auto [unoccluded, unoccluded_confidence] =
+                reference_gather(inputs, taps, settings, layer);
+            const FloatImage gpu =
+                renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer));
+            const FloatImage gpu_confidence =
+                renderer.read_pass_output(fmt::format("radiosity-confidence-layer{}", layer));
+            std::size_t within = 0, lit = 0, hidden = 0;
+            const std::size_t pixels = expected_confidence.pixels.size();
+            for (std::size_t i = 0; i < pixels; ++i) {
+                float error = 0.0f, scale = 0.0f;
+                for (int k = 0; k < 3; ++k) {
+                    scale = std::max(scale, expected.pixels[3 * i + k]);
+                    error = std::max(error,
+                                     std::abs(expected.pixels[3 * i + k] - gpu.pixels[3 * i + k]));
+                }
+                lit += scale > 1e-3f;
+                // The test removed light here: the mirror with visibility
+                // differs from the one without.
+                hidden += unoccluded_confidence.pixels[i] > expected_confidence.pixels[i] + 1e-3f;
+                const bool irradiance_ok = scale > 0.0f ? error <= 1e-3f * scale : error == 0.0f;
+                within += irradiance_ok && std::abs(gpu_confidence.pixels[i] -
+                                                    expected_confidence.pixels[i]) <= 1e-3f;
+            }
+            const double fraction = double(within) / double(pixels);
+            INFO(scene_name << ", layer " << layer << ": " << fraction * 100.0
+                            << "% within 1e-3 relative, " << lit << " lit pixels, " << hidden
+                            << " with samples hidden, of " << pixels);
+            CHECK(fraction >= 0.995);
+            CHECK(lit > pixels / 200);
+            if (layer == 0) CHECK(hidden > pixels / 20);
         }
     }
 }

@@ -133,6 +133,7 @@ inline constexpr int max_ao_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_ao_slices = 8;  // gtao and bitmask (ao-slices)
 inline constexpr int max_ao_steps = 32;  // gtao and bitmask, per slice side (ao-steps)
 inline constexpr int max_radiosity_layers = DEEPGI_LAYER_COUNT;
+inline constexpr int max_radiosity_visibility_steps = 32;
 inline constexpr int max_reflection_layers = DEEPGI_LAYER_COUNT;
 inline constexpr int max_reflection_steps = 1024;
 // temporal-offset: every value, and the next one past it, is exact in the
@@ -216,6 +217,10 @@ struct RadiositySettings {
     float alpha = 0.85f;    // temporal filter: history weight where the point moves (0: raw gather)
     int layers = 2;         // 1: layer 0 only, 2: both deep G-buffer layers
     RadiosityMethod method = RadiosityMethod::area;
+    // Points marched from X to each sample to test that no stored surface
+    // hides it (radiosity_visibility.glsl); 0: no test, every sample that
+    // faces X within the radius counts (docs/radiosity.md).
+    int visibility_steps = 0;
     // false: compose takes E and its confidence as 0, so the environment term
     // fills everywhere (the passes still run for their debug views).
     bool enabled = true;

@@ -1,7 +1,8 @@
 // Where the solid behind each G-buffer layer ends (backface_depth.frag,
 // docs/deep-sao.md "The march"): per layer, the nearest back face at or
 // behind the layer's stored depth. The AO march and the mirror reflections
-// read it, so the pass runs only for them, and only for the layers they use.
+// read it, and so does the radiosity gather's visibility test, so the pass
+// runs only for them, and only for the layers they use.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -45,6 +46,10 @@ public:
             declaration.value_reads.push_back("sao.layers");
         if (reflections_traced(*scene_, settings))
             declaration.value_reads.push_back("reflection.layers");
+        // Whether the radiosity gather tests visibility decides whether it
+        // reads back faces at all, so these are read whatever their values.
+        declaration.value_reads.push_back("radiosity.visibility_steps");
+        declaration.value_reads.push_back("radiosity.layers");
         return declaration;
     }
 
@@ -103,12 +108,15 @@ public:
 private:
     // The layers whose solids are read: the AO estimator's when it reads back
     // faces (the march, the thick spiral; the SAO pass runs, and binds this,
-    // whether or not compose uses AO) and the reflections'.
+    // whether or not compose uses AO), the reflections' and the radiosity
+    // gather's when it tests visibility.
     int layers(const RenderSettings& settings) const {
         const int for_ao = ao_method_reads_back_faces(settings.ao.method) ? settings.ao.layers : 0;
         const int for_reflections =
             reflections_traced(*scene_, settings) ? settings.reflection.layers : 0;
-        return std::max(for_ao, for_reflections);
+        const int for_radiosity =
+            settings.radiosity.visibility_steps > 0 ? settings.radiosity.layers : 0;
+        return std::max({for_ao, for_reflections, for_radiosity});
     }
 
     const Scene* scene_;  // the renderer's own copy, which outlives its passes

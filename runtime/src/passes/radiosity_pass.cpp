@@ -24,6 +24,8 @@ constexpr GLuint history_binding = 15;
 constexpr GLuint history_key_binding = 19;
 constexpr GLuint radiance_binding = 21;
 constexpr GLuint prepared_normal_binding = 22;
+// radiosity_visibility.glsl: where each stored surface's solid ends.
+constexpr GLuint backface_binding = 29;
 // Uniform locations: the layer (both shaders), the temporal blend weight.
 constexpr GLint layer_location = 4;
 constexpr GLint alpha_location = 29;
@@ -44,16 +46,29 @@ public:
 
     std::string_view name() const override { return "radiosity"; }
 
-    PassDeclaration declaration(const RenderSettings&) const override {
-        return {.reads = {{depth_binding, "depth_pyramid"},
-                          {radiance_binding, "radiosity_prepare.radiance"},
-                          {prepared_normal_binding, "radiosity_prepare.normal"},
-                          {normal_binding, "gbuffer.normal"},
-                          {motion_binding, "gbuffer.motion"}},
-                .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",
-                           "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"},
-                // The pyramid's MIP selection, as SAO uses it.
-                .value_reads = {"depth_pyramid.q"}};
+    PassDeclaration declaration(const RenderSettings& settings) const override {
+        const RadiositySettings& radiosity = settings.radiosity;
+        PassDeclaration declaration = {
+            .reads = {{depth_binding, "depth_pyramid"},
+                      {radiance_binding, "radiosity_prepare.radiance"},
+                      {prepared_normal_binding, "radiosity_prepare.normal"},
+                      {normal_binding, "gbuffer.normal"},
+                      {motion_binding, "gbuffer.motion"}},
+            .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",
+                       "radiosity.irradiance.layer0", "radiosity.irradiance.layer1"},
+            // The pyramid's MIP selection, as SAO uses it.
+            .value_reads = {"depth_pyramid.q"},
+            // How many layers backface_depth renders for the visibility test.
+            .value_writes = {{"radiosity.layers", float(radiosity.layers)},
+                             {"radiosity.visibility_steps", float(radiosity.visibility_steps)}}};
+        if (radiosity.visibility_steps > 0) {
+            // The visibility test treats stored surfaces as solids as the AO
+            // march does: to their back faces, or the AO's thickness behind
+            // an open mesh.
+            declaration.reads.push_back({backface_binding, "backface.depth"});
+            declaration.value_reads.push_back("sao.thickness");
+        }
+        return declaration;
     }
 
     SettingsChange settings_change(const RenderSettings& before,
@@ -106,8 +121,9 @@ public:
                           .max_mip = frame.integer("depth_pyramid.max_level"),
                           .layers = settings.layers,
                           .method = static_cast<int>(settings.method),
-                          .unused0 = 0.0f,
-                          .unused1 = 0.0f});
+                          .visibility_steps = settings.visibility_steps,
+                          .visibility_thickness =
+                              settings.visibility_steps > 0 ? frame.value("sao.thickness") : 0.0f});
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
             glProgramUniform1i(gather, layer_location, layer);

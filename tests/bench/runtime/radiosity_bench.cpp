@@ -7,11 +7,15 @@
 // Every pass is timed with a CPU clock around glFinish (--timing gpu for GL
 // timer queries on a GPU); medians of --frames frames after --warmup frames
 // under the scene's default (static) camera, the two renderers taking turns
-// frame by frame.
+// frame by frame. With --visibility-steps N, a third renderer, the default
+// frame with the gather's visibility test of N steps, takes turns with them,
+// and a second table sets its radiosity pass against the default's.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 
 #include <fmt/format.h>
+
+#include <optional>
 
 using Medians = deepgi::bench::PassMedians;
 
@@ -20,6 +24,11 @@ int main(int argc, char** argv) {
     options.scenes = deepgi::builtin_scene_names();
     CLI::App app{"radiosity_bench: deep radiosity milliseconds, one layer against two"};
     deepgi::bench::add_options(app, options);
+    int visibility_steps = 0;
+    app.add_option("--visibility-steps", visibility_steps,
+                   "Also time the default frame with the radiosity visibility test of this many "
+                   "steps (0: not)")
+        ->check(CLI::Range(0, deepgi::limits::max_radiosity_visibility_steps));
     CLI11_PARSE(app, argc, argv);
     return deepgi::bench::run("radiosity_bench", [&] {
         deepgi::bench::finish(options);
@@ -29,6 +38,7 @@ int main(int argc, char** argv) {
         std::string measured;
         std::vector<std::string> order;
         std::vector<std::pair<std::string, Medians>> full_frames;
+        std::string visibility_rows;
         fmt::print(
             "| scene | radiosity, 1 layer (ms) | radiosity, 2 layers (ms) | 2 / 1 | blur (ms) | "
             "frame, 1 layer (ms) | frame, 2 layers (ms) |\n"
@@ -42,9 +52,25 @@ int main(int argc, char** argv) {
                                         deepgi::ShaderLoader::from_build_configuration());
             deepgi::Renderer one_layers(scene, one_layer,
                                         deepgi::ShaderLoader::from_build_configuration());
-            const std::vector<Medians> medians = deepgi::bench::time_alternated(
-                {{&two_layers, scene.default_camera}, {&one_layers, scene.default_camera}},
-                options);
+            deepgi::RenderSettings with_visibility = settings;
+            with_visibility.radiosity.visibility_steps = visibility_steps;
+            std::optional<deepgi::Renderer> visible;
+            if (visibility_steps > 0)
+                visible.emplace(scene, with_visibility,
+                                deepgi::ShaderLoader::from_build_configuration());
+            std::vector<deepgi::bench::Configuration> timed = {{&two_layers, scene.default_camera},
+                                                               {&one_layers, scene.default_camera}};
+            if (visible) timed.push_back({&*visible, scene.default_camera});
+            const std::vector<Medians> medians = deepgi::bench::time_alternated(timed, options);
+            if (visible) {
+                const Medians& off = medians[0];
+                const Medians& on = medians[2];
+                visibility_rows +=
+                    fmt::format("| {} | {:.1f} | {:.1f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} |\n",
+                                name, off.at("radiosity"), on.at("radiosity"),
+                                on.at("radiosity") / off.at("radiosity"), off.at("total"),
+                                on.at("total"), on.at("total") / off.at("total"));
+            }
             for (const auto& timing : two_layers.last_timings()) scene_order.push_back(timing.pass);
             if (measured.empty()) measured = deepgi::bench::measured_on(two_layers, options);
             const Medians& two = medians[0];
@@ -58,6 +84,13 @@ int main(int argc, char** argv) {
             full_frames.emplace_back(name, two);
         }
 
+        if (!visibility_rows.empty())
+            fmt::print(
+                "\nVisibility test of {} steps against none (two layers):\n\n"
+                "| scene | radiosity, none (ms) | radiosity, test (ms) | ratio | frame, none (ms) "
+                "| "
+                "frame, test (ms) | ratio |\n|---|---|---|---|---|---|---|\n{}",
+                visibility_steps, visibility_rows);
         fmt::print("\n{}\n", measured);
         fmt::print("\nPer pass, default frame (ms):\n\n| scene |");
         for (const auto& pass : order) fmt::print(" {} |", pass);

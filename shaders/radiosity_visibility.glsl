@@ -1,0 +1,52 @@
+// Whether a radiosity sample Y is visible from the gathering point X
+// (docs/radiosity.md, "A visibility test per sample"). Included by
+// radiosity.frag, whose declarations it reads: the depth pyramid (level 0
+// holds both layers' linear depths) and the prepared normals (level 0 holds
+// the G-buffer's normals).
+//
+// Without it the gather counts every surface within the radius that faces X
+// and that X faces, also one that other geometry hides from X: on a scene of
+// rows of shelves that light is most of what the gather sums. The test
+// marches the straight segment from X to Y in `steps` points at
+// t = (k + 1/2) / steps and calls Y hidden when one of them lies inside a
+// stored surface's solid, the way the AO march treats stored surfaces
+// (ao_march.glsl): behind the depth the layer stores at the point's pixel,
+// in front of where that surface's solid ends (its back face, at least two
+// steps deep so that a segment crossing a thin part lands inside it; behind
+// an open mesh, with no back face, `thickness` deep), and behind that
+// surface's plane by more than 1 mm per metre of depth, the reconstruction
+// error of a stored point and its normal, so that X's and Y's own surfaces
+// never hide the segment that leaves them on their front sides. The steps
+// sit at fixed fractions of the segment: the rotation of the taps already
+// varies the segments from frame to frame, and the CPU mirror can follow
+// the test exactly.
+layout(binding = 29) uniform sampler2DArray radiosity_backface_depth;
+
+bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thickness) {
+  vec3 v = y - x;
+  float step_length = length(v) / float(steps);
+  for (int k = 0; k < steps; ++k) {
+    vec3 q = x + v * ((float(k) + 0.5) / float(steps));
+    float z = -q.z;
+    // A point of the segment between two stored points projects between
+    // their pixels, inside the buffer and behind the near plane; the checks
+    // guard rounding only.
+    if (z <= frame.camera_ray_scale.z) continue;
+    vec2 at = (q.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
+    if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) continue;
+    ivec2 p = ivec2(at);
+    vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
+    for (int j = 0; j < layers; ++j) {
+      float depth = j == 0 ? depths.r : depths.g;
+      if (depth <= 0.0 || z <= depth) continue;
+      float back_face = texelFetch(radiosity_backface_depth, ivec3(p, j), 0).r;
+      float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
+                                        : depth + thickness;
+      if (z >= solid_end) continue;
+      vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+      vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, j), 0).xy);
+      if (dot(q - surface, surface_normal) < -1.0e-3 * z) return false;
+    }
+  }
+  return true;
+}
