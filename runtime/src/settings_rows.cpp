@@ -39,7 +39,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 30> numeric_table = {{
+const std::array<NumericSetting, 31> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
