@@ -1,7 +1,10 @@
-# Deep radiosity tests (labels runtime and radiosity). RADIOSITY_TAPS /
-# RADIOSITY_TAU (cmake/GeneratedHeaders.cmake) say which pattern the
-# build-time radiosity_taps.glsl holds, so the CPU evaluation uses the same.
-add_executable(deepgi_radiosity_tests radiosity_test.cpp radiosity_visibility_test.cpp)
+# Deep radiosity tests (labels runtime and radiosity): the gather, its
+# temporal filter and its visibility test, in one executable and one ctest
+# entry. RADIOSITY_TAPS / RADIOSITY_TAU (cmake/GeneratedHeaders.cmake) say
+# which pattern the build-time radiosity_taps.glsl holds, so the CPU
+# evaluation uses the same.
+add_executable(deepgi_radiosity_tests radiosity_gather_test.cpp radiosity_temporal_test.cpp
+  radiosity_visibility_test.cpp)
 target_link_libraries(deepgi_radiosity_tests PRIVATE deepgi_sao_reference spiral_catch_main)
 target_include_directories(deepgi_radiosity_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
 set(_radiosity_test_tau 0)
