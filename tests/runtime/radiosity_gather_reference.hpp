@@ -200,15 +200,4 @@ inline float max_value(const FloatImage& image) {
                                 : *std::max_element(image.pixels.begin(), image.pixels.end());
 }
 
-// World position of layer 0's point at pixel (x, y), from read-back depth.
-inline glm::vec3 world_point(const FloatImage& depth, const Camera& camera,
-                             const RenderSettings& settings, int x, int y) {
-    const glm::vec2 ray = camera_ray_scale(camera, settings);
-    const float d = depth.at(x, y, 0);
-    const float ndc_x = (float(x) + 0.5f) / float(depth.width) * 2.0f - 1.0f;
-    const float ndc_y = (float(y) + 0.5f) / float(depth.height) * 2.0f - 1.0f;
-    const glm::vec4 camera_space(ndc_x * ray.x * d, ndc_y * ray.y * d, -d, 1.0f);
-    return glm::vec3(glm::inverse(camera_view_matrix(camera)) * camera_space);
-}
-
 }  // namespace deepgi::test

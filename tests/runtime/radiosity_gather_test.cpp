@@ -1,6 +1,7 @@
 // Deep radiosity gather against its CPU evaluation, a form-factor integral
 // and its invariants (black albedo, colour bleeding, bounces).
 #include "radiosity_gather_reference.hpp"
+#include "test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -278,7 +279,7 @@ Scene banner_behind_column() {
     SceneBuilder builder;
     const int grey = builder.add_material({0.6f, 0.6f, 0.6f});
     const int red = builder.add_material({0.9f, 0.05f, 0.05f});
-    builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0}, grey);
+    add_floor_below_origin(builder, grey);
     builder.add_box({0.0f, 0.0f, -3.0f}, {0.35f, 1.0f, 0.35f}, grey);
     builder.add_quad({-0.3f, -0.9f, -4.0f}, {0.3f, -0.9f, -4.0f}, {0.3f, 0.5f, -4.0f},
                      {-0.3f, 0.5f, -4.0f}, {0, 0, 1}, red);

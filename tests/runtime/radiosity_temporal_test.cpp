@@ -2,6 +2,7 @@
 // under a still camera, history along motion vectors, cuts, and finite
 // values along a camera path.
 #include "radiosity_gather_reference.hpp"
+#include "test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

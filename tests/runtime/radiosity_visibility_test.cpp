@@ -2,6 +2,7 @@
 // an emitting wall that a board hides from the floor in front of it.
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
+#include "test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -59,17 +60,6 @@ double wall_irradiance(glm::vec3 p, float radius) {
     return sum;
 }
 
-// World position of layer 0's point at pixel (x, y), from read-back depth.
-glm::vec3 floor_point(const FloatImage& depth, const Camera& camera, const RenderSettings& settings,
-                      int x, int y) {
-    const glm::vec2 ray = camera_ray_scale(camera, settings);
-    const float d = depth.at(x, y, 0);
-    const float ndc_x = (float(x) + 0.5f) / float(depth.width) * 2.0f - 1.0f;
-    const float ndc_y = (float(y) + 0.5f) / float(depth.height) * 2.0f - 1.0f;
-    const glm::vec4 camera_space(ndc_x * ray.x * d, ndc_y * ray.y * d, -d, 1.0f);
-    return glm::vec3(glm::inverse(camera_view_matrix(camera)) * camera_space);
-}
-
 TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibility test",
           "[radiosity]") {
     HeadlessContext context;
@@ -96,7 +86,7 @@ TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibil
         for (int y = 0; y < e.height; ++y) {
             for (int x = 0; x < e.width; ++x) {
                 if (depth.at(x, y, 0) <= 0.0f) continue;
-                const glm::vec3 p = floor_point(depth, scene.default_camera, settings, x, y);
+                const glm::vec3 p = world_point(depth, scene.default_camera, settings, x, y);
                 if (std::abs(p.y) > 0.01f || std::abs(p.x) > 1.5f) continue;
                 Region* region = nullptr;
                 if (p.z < -3.0f && p.z > -5.7f) region = &front[on];
