@@ -122,7 +122,7 @@ float changed_value(const NumericSetting& row, const RenderSettings& settings) {
 
 TEST_CASE(
     "live settings: the rows marked drop_history, the radiosity method and a generator "
-    "with another layer count drop history; the rows marked none keep it",
+    "with another layer count drop history, and the rows marked none keep it",
     "[runtime][window]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
