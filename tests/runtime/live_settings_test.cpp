@@ -195,6 +195,44 @@ TEST_CASE(
           "reference changes)");
 }
 
+TEST_CASE("live settings: a reallocation that keeps the frame's size keeps the running mean",
+          "[runtime][window]") {
+    // A new shadow map size re-creates every pass's targets. The AO does not
+    // depend on the shadow, so a still camera's running mean must go on as
+    // in a renderer that never changed it: bit for bit. (When the history
+    // textures were re-created with the rest, they came back cleared while
+    // history still counted as valid.)
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    Renderer edited(scene, small_settings(), ShaderLoader::from_build_configuration());
+    Renderer untouched(scene, small_settings(), ShaderLoader::from_build_configuration());
+    for (int frame = 0; frame < 4; ++frame) {
+        edited.render(scene.default_camera);
+        untouched.render(scene.default_camera);
+    }
+    const std::size_t log_length = edited.history_log().size();
+    RenderSettings settings = edited.settings();
+    settings.shadow_map_size = 512;
+    edited.set_settings(settings);
+    CHECK(edited.history_valid());
+    CHECK(edited.history_log().size() == log_length);
+    edited.render(scene.default_camera);
+    untouched.render(scene.default_camera);
+    const FloatImage a = edited.read_pass_output("ao-temporal");
+    const FloatImage b = untouched.read_pass_output("ao-temporal");
+    REQUIRE(a.pixels.size() == b.pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+    CHECK(differing == 0);
+
+    // The pyramid's depth reallocates too and keeps history the same way.
+    settings = edited.settings();
+    settings.depth_pyramid.max_mip_level -= 1;
+    edited.set_settings(settings);
+    CHECK(edited.history_valid());
+    CHECK(edited.history_log().size() == log_length);
+}
+
 TEST_CASE("live settings: an edited blur filters as a renderer built with it",
           "[runtime][window]") {
     HeadlessContext context;
