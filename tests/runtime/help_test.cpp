@@ -16,7 +16,7 @@ spiral::test::ProcessResult run_deepgi(const std::string& arguments) {
 
 }  // namespace
 
-TEST_CASE("deepgi --help names every subcommand and every scene", "[cli][help]") {
+TEST_CASE("help: deepgi --help names every subcommand and every scene", "[cli][help]") {
     const auto help = run_deepgi("--help");
     REQUIRE(help.status == 0);
     for (const char* subcommand : {"deepgi reference", "deepgi report"}) {
@@ -36,7 +36,7 @@ TEST_CASE("deepgi --help names every subcommand and every scene", "[cli][help]")
     }
 }
 
-TEST_CASE("every deepgi option's help shows its default, without parser notation", "[cli][help]") {
+TEST_CASE("help: every deepgi option's help shows its default, without parser notation", "[cli][help]") {
     const std::string command = GENERATE(as<std::string>{}, "", "reference ", "report ");
     const auto help = run_deepgi(command + "--help");
     REQUIRE(help.status == 0);

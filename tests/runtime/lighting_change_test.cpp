@@ -40,7 +40,7 @@ Blend check_blend(const FloatImage& e, const FloatImage& history, const FloatIma
 }
 
 TEST_CASE(
-    "radiosity: a changed light blends in at the motion weight for a frame; the same light set "
+    "radiosity: a changed light blends in at the motion weight for a frame, the same light set "
     "again keeps the running mean",
     "[radiosity]") {
     HeadlessContext context;
