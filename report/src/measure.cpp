@@ -297,6 +297,7 @@ Row make_row(Row row, const Measured& m) {
 void measure_side_tables(const ReportOptions& options, ReportResult& result,
                          const std::function<void(const std::string&)>& log,
                          const std::function<void(const std::string&)>& step) {
+    write_tie_table(options.output, options.taps, options.ties);  // exact: no rendering
     if (options.stability) {
         step("stability cases");
         const auto stability_start = std::chrono::steady_clock::now();
