@@ -227,6 +227,12 @@ int main(int argc, char** argv) {
     app.add_option("--table-from", table_from,
                    "Render nothing: print the table of a --csv file (or several joined) with this "
                    "build's tie-break");
+    std::string rule = "band";
+    app.add_option("--pick", rule,
+                   "Which tie is judged as the pick: band (the search's tie-break, "
+                   "docs/design.md), smallest (the smallest minimiser, the rule before it) or "
+                   "largest-pair (the largest minimiser up to n / 2: an observation, no rule)")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -243,6 +249,9 @@ int main(int argc, char** argv) {
         if (converged_taps < 1 || converged_taps > 1024)
             throw deepgi::InputError("--converged-taps must be in [1, 1024]");
         if (scenes.empty()) throw deepgi::InputError("--scenes is empty");
+        if (rule != "band" && rule != "smallest" && rule != "largest-pair")
+            throw deepgi::InputError(
+                fmt::format("--pick '{}' is not band, smallest or largest-pair", rule));
 
         deepgi::RenderSettings settings;
         settings.width = std::stoi(match[1].str());
@@ -258,14 +267,23 @@ int main(int argc, char** argv) {
 
         std::vector<spiral::SearchResult> tied;
         for (int n = min_n; n <= max_n; ++n)
-            if (spiral::SearchResult r = spiral::search(n); r.ties.size() > 1)
+            if (spiral::SearchResult r = spiral::search(n); r.ties.size() > 1) {
+                if (rule == "smallest") r.tau = r.ties.front();
+                if (rule == "largest-pair")
+                    for (const int tau : r.ties)
+                        if (2 * tau <= n) r.tau = tau;
                 tied.push_back(std::move(r));
+            }
         auto finish = [&](const Totals& total, int scene_count, const std::string& what) {
             std::erase_if(tied, [&](const spiral::SearchResult& r) {
                 return !complete(r, total, repeats, scene_count);
             });
             const auto verdicts = judge(tied, total, repeats);
-            print_table(tied, total, verdicts, repeats, what);
+            print_table(tied, total, verdicts, repeats,
+                        fmt::format("{} The pick: {}.", what,
+                                    rule == "band"       ? "the band-profile tie-break"
+                                    : rule == "smallest" ? "the smallest minimiser"
+                                                         : "the largest minimiser up to n / 2"));
             if (!verdicts_csv.empty())
                 write_atomically(verdicts_csv, deepgi::report::format_verdict_csv(verdicts));
         };
