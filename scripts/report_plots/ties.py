@@ -21,12 +21,12 @@ def tie_section(directory, add):
     add("## Ties of the tau table\n")
     judged = [r for r in rows if r["verdict"] != ""]
     in_run = [r for r in rows if r["in_run"] == "1"]
-    add("Where several tau reach the minimum of D(n, tau), the tie-break picks one by the band "
-        "profile (docs/design.md, 'Ties'); mirror pairs tau, n - tau are the same spiral "
-        "reflected. 'ties' lists every minimiser, the pick in bold.")
+    intro = ("Where several tau reach the minimum of D(n, tau), the tie-break picks one by the "
+             "band profile (docs/design.md, 'Ties'); mirror pairs tau, n - tau are the same "
+             "spiral reflected. 'ties' lists every minimiser, the pick in bold.")
     if judged:
         repeats = sorted({r["repeats"] for r in judged})
-        add(" The sampling columns are a tie_error_study run's (`--ties-from`, "
+        add(intro + " The sampling columns are a tie_error_study run's (`--ties-from`, "
             f"{' or '.join(repeats)} repeats): the raw solid-angle AV's MAE against its own "
             "converged result for the pick's mirror pair and for the best other pair (each the "
             "mean of its two reflections), their difference averaged over the repeats, the "
@@ -35,8 +35,8 @@ def tie_section(directory, add):
             "rotations that the repeats do not vary. A difference within the larger of the two "
             "names no winner.\n")
     else:
-        add(" This run was given no tie_error_study verdicts (`--ties-from`), so it does not say "
-            "how the ties sample (docs/optimizer.md, 'Ties').\n")
+        add(intro + " This run was given no tie_error_study verdicts (`--ties-from`), so it "
+            "does not say how the ties sample (docs/optimizer.md, 'Ties').\n")
 
     def ties_cell(r):
         return ", ".join(f"**{t}**" if t == r["pick"] else t for t in r["ties"].split())
@@ -45,7 +45,7 @@ def tie_section(directory, add):
         return r["verdict"] != "" and r["study_pick"] != r["pick"]
 
     if in_run:
-        add("| N | D | ties | pick MAE | best other | other MAE | difference | spread "
+        add("| N | D | ties | pick pair MAE | best other pair | other pair MAE | difference | spread "
             "| mirror spread | verdict |")
         add("|--:|--:|:--|--:|--:|--:|--:|--:|--:|:--|")
         for r in in_run:
