@@ -116,9 +116,8 @@ TEST_CASE("ties: the pick's mirror pair is judged against the best other pair wi
                     std::invalid_argument);
     CHECK_THROWS_AS(report::judge_ties({.n = 6, .pick = 2, .mae = {{1, {0.5}}, {5, {0.1}}}}),
                     std::invalid_argument);
-    CHECK_THROWS_AS(
-        report::judge_ties({.n = 6, .pick = 1, .mae = {{1, {0.5, 0.4}}, {5, {0.1}}}}),
-        std::invalid_argument);
+    CHECK_THROWS_AS(report::judge_ties({.n = 6, .pick = 1, .mae = {{1, {0.5, 0.4}}, {5, {0.1}}}}),
+                    std::invalid_argument);
     CHECK_THROWS_AS(report::judge_ties({.n = 6, .pick = 1, .mae = {{1, {0.5}}, {6, {0.1}}}}),
                     std::invalid_argument);
 }
@@ -196,7 +195,8 @@ TEST_CASE("ties: --ties-from verdicts join the table, and bad files are refused"
         INFO(run.out);
         CHECK(run.out.find("| 8 | 80/256 | **3**, 5 | - |") != std::string::npos);
         CHECK(run.out.find("| 11 | 116/484 | **3**, 4, 7, 8 | 0.55750 | 4 | 0.47500 | +0.08250 "
-                           "| 0.00500 | 0.05000 | pick worse beyond spread |") != std::string::npos);
+                           "| 0.00500 | 0.05000 | pick worse beyond spread |") !=
+              std::string::npos);
         CHECK(run.out.find("worse than another tie beyond the spread** at n = 11.") !=
               std::string::npos);
         CHECK(run.out.find("differs from this build's at n = 3") != std::string::npos);
