@@ -176,6 +176,9 @@ int run_report_command(int argc, char** argv) {
                    "Still frames per mirror configuration (the filtered radiance's mean; the "
                    "timed ones follow --warmup)")
         ->default_str(fmt::format("{} frames", report.reflections.frames));
+    app.add_option("--ties-from", report.ties.verdicts_from,
+                   "A tie_error_study --verdicts-csv file: ties.csv and the summary then say "
+                   "whether each pick samples worse than the best other tie beyond its spread");
     app.add_flag("--no-reflections", options.no_reflections,
                  "Skip the mirror rows (reflections.csv)");
     app.add_flag("--no-plots", options.no_plots, "Skip the matplotlib figures and summary.md");

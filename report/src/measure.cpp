@@ -86,6 +86,7 @@ int nearest(const std::vector<int>& values, int target) {
 void measure_side_tables(const ReportOptions& options, ReportResult& result,
                          const std::function<void(const std::string&)>& log,
                          const std::function<void(const std::string&)>& step) {
+    write_tie_table(options.output, options.taps, options.ties);  // exact: no rendering
     if (options.stability) {
         step("stability cases");
         const auto stability_start = std::chrono::steady_clock::now();

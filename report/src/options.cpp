@@ -64,6 +64,7 @@ void validate(const ReportOptions& options) {
             fmt::format("--float-max-n {} is out of range (1 to 4096)", options.float_max_n));
     validate(options.estimators);
     validate(options.reflections);
+    validate(options.ties);
     if (options.output.empty()) throw InputError("report needs --output DIR");
     if (fs::exists(options.output) && !fs::is_directory(options.output))
         throw InputError(fmt::format("--output '{}' is not a directory", options.output.string()));

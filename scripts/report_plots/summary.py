@@ -5,6 +5,7 @@ own noise (noise.py) is called "within the noise", never a win."""
 import os
 
 from .reflections import reflection_section
+from .ties import tie_section
 from .data import (METHOD_LABELS, PATTERN_LABELS, STUDY_TAPS, Table, atomic_write_text, fmt,
                    mean, spearman)
 from .noise import decide, spread
@@ -450,6 +451,7 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
         extra(add)  # sections drawn from more than these rows (estimators.py)
     stability_section(directory, add)
     reflection_section(directory, list(dict.fromkeys(r["scene"] for r in all_rows or rows)), add)
+    tie_section(directory, add)
 
     if images is not None:
         add("## Figures\n")

@@ -294,6 +294,13 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     const std::string rows_json = json.substr(0, json.find("\"stability\":"));
     CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 4);
     CHECK(fs::exists(output / "discrepancy.csv"));
+    // The tie table: both tap counts have several minimisers (4: 1 and 3).
+    const auto ties = read_csv(output / "ties.csv");
+    REQUIRE(ties.size() == 2);
+    CHECK(ties[0].at("n") == "4");
+    CHECK(ties[0].at("ties") == "1 3");
+    CHECK(ties[1].at("n") == "32");
+    CHECK(ties[1].at("verdict").empty());  // no --ties-from
     // The images of each method, counted again from the files: the open
     // pixels below 0.99 agree with the row the images came from.
     const deepgi::FloatImage truth = deepgi::read_pfm(output / "images" / "cornell-truth.pfm");
@@ -443,7 +450,7 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
           std::string("--no-stability"),    // the hard cases are off unless --stability
           std::string("--repeats 0"), std::string("--repeats 17"),
           std::string("--ao-methods horizon"), std::string("--ao-methods march,march"),
-          std::string("--scenes no-such-scene")}) {
+          std::string("--ties-from no-such-verdicts.csv"), std::string("--scenes no-such-scene")}) {
         const auto run = spiral::test::run_command(
             program + " report " + arguments + " --no-plots --output '" + output.string() + "'");
         INFO(arguments << ": " << run.err);

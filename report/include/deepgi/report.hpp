@@ -9,6 +9,7 @@
 #include "deepgi/image_io.hpp"
 #include "deepgi/report_estimators.hpp"
 #include "deepgi/report_reflections.hpp"
+#include "deepgi/report_ties.hpp"
 #include "deepgi/settings.hpp"
 
 #include <spiral/codegen.hpp>
@@ -206,6 +207,8 @@ struct ReportOptions {
     int float_max_n = 1024;
     // The mirror rows of every scene with mirrors (reflections.csv).
     ReflectionOptions reflections;
+    // The tie table (ties.csv), with a tie_error_study run's verdicts.
+    TieOptions ties;
     std::filesystem::path output;
     // One line per finished step (for the log); may be empty.
     std::function<void(const std::string&)> log;
