@@ -6,28 +6,33 @@
 // the stored surfaces send to X, exactly: every level-0 pixel p of the
 // gathered layers as the planar patch the gather takes it for (solid angle
 // s^2 z_p^2 cos(phi) cos_y / (|v|^2 max(cos(view), 0.1)), facing and radius
-// tests as the gather's, B the prepared radiance), with no taps, MIP levels,
-// frames or clamp:
-//   buffer, all   every stored pixel within the radius in 3D;
-//   buffer, disk  only those within the screen disk of R = r / (s z_X)
-//                 pixels around X, the area the gather's taps sweep;
-//   exact view    "all" without the max(cos(view), 0.1) bound.
+// tests as the gather's), with no taps, MIP levels, frames or clamp:
+//   buffer, traced light  layer 0's light from the ray tracer's direct
+//                         radiance (plus the G-buffer's emission), layer 1's
+//                         the prepared radiance B;
+//   buffer, exact view    every stored pixel within the radius in 3D, light
+//                         B, without the max(cos(view), 0.1) bound;
+//   buffer, all           the same with the bound, as the gather;
+//   buffer, disk          only those within the screen disk of R = r / (s
+//                         z_X) pixels around X, the area the taps sweep.
 // Against the visible truth T (E0 + E1, or E0 with --layers 1) these and the
 // renderer's filtered (radiosity-irradiance-layer0) and blurred E
-// (radiosity-blurred) give a chain: T -> all (what the buffer's resolution
-// and its planar patches cost) -> disk (what the screen disk does not
-// reach) -> filtered (the taps' own error after the frames: noise, MIP
-// snapping, clamp) -> blurred (the blur). With --repeat, a second dump of
-// the same configuration with another temporal offset: the noise is half
-// the mean square of their difference, and the two runs' mean is also
-// measured. Over regions of X: edges (a depth or normal step within 2
-// pixels of layer 0), corners (the nearest surface that sends X light lies
-// within 4 pixels' footprint at X's depth) and the rest: each region's share
-// of pixels, of the truth and of sum |E - T|, MAE and bias relative to the
-// whole truth's sum. With --maps, per-pixel error maps (E - T) / mean(T) as
-// PNG (red: too bright, blue: too dark, full at 0.5; 3x nearest-neighbour
-// upscaling) and PFM, plus the region mask. MAE and bias as
-// deepgi_compare_irradiance_split: sum |E - T| / sum T, channels summed.
+// (radiosity-blurred) make a chain: T -> traced light (the buffer's
+// resolution) -> all (the rasterised light) -> disk (what the screen disk
+// does not reach) -> filtered (the taps after the frames: noise, MIP
+// levels, clamp) -> blurred (the blur). With --repeat, a second dump of the
+// same configuration with another temporal offset: the noise of one run is
+// half the mean square of their difference, and the two runs' mean is
+// measured too. Regions of X: silhouettes (a depth step within 2 pixels of
+// layer 0), creases (a normal step within 2 pixels), near (the nearest
+// stored point that sends X light within 4 pixels' footprint at X's depth)
+// and the rest; each row gives each region's sum |E - T| and sum (E - T)
+// over the whole T's sum, so the regions add up to the row. The truth's own
+// noise comes from its standard-error image. With --maps, per-pixel error
+// maps (E - T) / mean(T) as PNG (red: too bright, blue: too dark, full at
+// 0.5; grey: not compared; 3x nearest-neighbour upscaling) and PFM, plus
+// the region mask. MAE and bias as deepgi_compare_irradiance_split: sum |E -
+// T| / sum T, channels summed.
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
