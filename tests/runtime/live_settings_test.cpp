@@ -71,7 +71,7 @@ TEST_CASE("live settings: doubling the light intensity doubles the direct light"
     renderer.render(scene.default_camera);
     const FloatImage twice = renderer.read_pass_output("direct_light-radiance-layer0");
     // Radiance is linear in the intensity, and doubling is exact in floats
-    // (also after R11F_G11F_B10F rounding).
+    // (also after RGBA16F rounding).
     int lit = 0;
     for (std::size_t i = 0; i < once.pixels.size(); ++i) {
         CHECK(twice.pixels[i] == 2.0f * once.pixels[i]);

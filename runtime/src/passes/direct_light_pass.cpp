@@ -1,5 +1,9 @@
 // Lambertian key light with PCF shadows on both G-buffer layers (docs/design.md,
-// section 5.4), one draw per layer into an R11F_G11F_B10F array.
+// section 5.4), one draw per layer into an RGBA16F array. It is the one-bounce
+// gather's source, so its format decides a bias: R11F_G11F_B10F (6- and
+// 5-bit mantissas) may truncate, and llvmpipe does, which made E about 1.5%
+// too dark on ref-crease (docs/radiosity.md, "Where the error against the
+// visible truth comes from"); a 10-bit mantissa leaves under 0.1%.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -37,8 +41,7 @@ public:
     void resize(FrameResources& frame) override {
         width_ = frame.layout.internal_width;
         height_ = frame.layout.internal_height;
-        radiance_ =
-            gl::create_texture_array(GL_R11F_G11F_B10F, width_, height_, DEEPGI_LAYER_COUNT);
+        radiance_ = gl::create_texture_array(GL_RGBA16F, width_, height_, DEEPGI_LAYER_COUNT);
         label_texture(radiance_, name(), "radiance");
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             layer_framebuffers_[layer] = gl::create_framebuffer();
