@@ -13,9 +13,12 @@
 // over the mean occlusion 1 - C; fine grain: the relative RMS of a value
 // minus its 9x9 box mean over pixels whose window lies on one plane of one
 // albedo, for the image and for the converged one.
+// --maps DIR writes where the AO error sits (docs/deep-sao.md, "How fast the
+// march converges"); --check-running-mean checks that no history was lost.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
+#include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 #include "study_headers.hpp"
 
@@ -137,6 +140,54 @@ Errors errors(const Images& image, const Images& converged, const FloatImage& de
                 std::max(occlusion / double(std::max<std::size_t>(surface, 1)), 1e-30)};
 }
 
+// --maps: a grey map of |AO - C| / mean occlusion (the table's AO figure per
+// pixel), black at 0 and white at 0.5 or more; sky dark blue.
+void write_error_map(const std::filesystem::path& path, const FloatImage& ao,
+                     const FloatImage& converged, const FloatImage& depth) {
+    constexpr double full = 0.5;
+    double occlusion = 0.0;
+    std::size_t surface = 0;
+    for (std::size_t p = 0; p < depth.pixels.size(); ++p)
+        if (depth.pixels[p] > 0.0f) occlusion += 1.0 - converged.pixels[p], ++surface;
+    occlusion = std::max(occlusion / double(std::max<std::size_t>(surface, 1)), 1e-30);
+    std::vector<std::uint8_t> rgba(depth.pixels.size() * 4, 255);
+    for (std::size_t p = 0; p < depth.pixels.size(); ++p) {
+        const double e = std::abs(ao.pixels[p] - converged.pixels[p]) / occlusion / full;
+        const auto g = std::uint8_t(std::lround(255.0 * std::clamp(e, 0.0, 1.0)));
+        rgba[4 * p] = rgba[4 * p + 1] = rgba[4 * p + 2] = depth.pixels[p] > 0.0f ? g : 0;
+        if (depth.pixels[p] <= 0.0f) rgba[4 * p + 2] = 96;  // sky: dark blue
+    }
+    deepgi::write_png(path, depth.width, depth.height, rgba);
+}
+
+// --check-running-mean: for a still camera the filtered AO (`ao-temporal`,
+// before the blur) must be the plain mean of every raw frame so far, below
+// the history cap. A texel that differs had its history dropped or capped.
+void add_raw_ao(const deepgi::Renderer& renderer, std::vector<double>& sum) {
+    const FloatImage raw = renderer.read_pass_output("ao-raw");
+    sum.resize(raw.pixels.size(), 0.0);
+    for (std::size_t p = 0; p < raw.pixels.size(); ++p) sum[p] += raw.pixels[p];
+}
+
+void print_running_mean_check(const deepgi::Renderer& renderer, const std::vector<double>& sum,
+                              const std::string& scene, int frames) {
+    const FloatImage filtered = renderer.read_pass_output("ao-temporal");
+    const FloatImage depth = renderer.read_pass_output("depth_pyramid-level0");
+    int differ = 0, surface = 0;
+    double worst = 0.0;
+    for (std::size_t p = 0; p < filtered.pixels.size(); ++p) {
+        if (depth.pixels[p * depth.channels] <= 0.0f) continue;
+        ++surface;
+        const double d = std::abs(filtered.pixels[p] - sum[p] / frames);
+        worst = std::max(worst, d);
+        if (d > 1e-4) ++differ;
+    }
+    fmt::print(
+        "<!-- {}, {} frames: filtered AO differs from the mean of the raw frames by "
+        "over 1e-4 at {} of {} surface texels (largest {:.2g}) -->\n",
+        scene, frames, differ, surface, worst);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -146,12 +197,19 @@ int main(int argc, char** argv) {
     std::vector<int> counts{16, 64};
     int converged_frames = 256;
     int converged_taps = 76;
+    std::string maps;
+    bool check_running_mean = false;
     CLI::App app{"temporal_convergence: still-camera E and AO against the converged image"};
     deepgi::bench::add_options(app, options);
     app.add_option("--frames-list", counts, "still frame counts at which to measure")
         ->delimiter(',');
     app.add_option("--converged-frames", converged_frames, "frames of the converged image");
     app.add_option("--converged-taps", converged_taps, "radiosity taps of the converged image");
+    app.add_option("--maps", maps,
+                   "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5) and the "
+                   "blurred, raw and converged AO as PFM");
+    app.add_flag("--check-running-mean", check_running_mean,
+                 "check that the filtered AO is the mean of the raw frames (a readback a frame)");
     CLI11_PARSE(app, argc, argv);
     return deepgi::bench::run("temporal_convergence", [&] {
         deepgi::bench::finish(options);
@@ -186,17 +244,36 @@ int main(int argc, char** argv) {
                                 viewport_of(dense.read_pass_output("gbuffer-normal-layer0"), w, h),
                                 viewport_of(dense.read_pass_output("gbuffer-albedo-layer0"), w, h)};
             const std::vector<std::size_t> flat = flat_pixels(guides);
+            if (!maps.empty()) {
+                std::filesystem::create_directories(maps);
+                deepgi::write_pfm(
+                    std::filesystem::path(maps) / fmt::format("{}-ao-converged.pfm", name),
+                    converged.ao);
+                deepgi::write_pfm(std::filesystem::path(maps) / fmt::format("{}-depth.pfm", name),
+                                  guides.depth);
+            }
             const double converged_e_grain = fine_grain(converged.e, flat, false);
             const double converged_ao_grain = fine_grain(converged.ao, flat, true);
             deepgi::Renderer renderer(scene, settings,
                                       deepgi::ShaderLoader::from_build_configuration());
             int rendered = 0;
+            std::vector<double> raw_sum;  // --check-running-mean: the raw AO summed over frames
             for (int n : counts) {
                 while (rendered < n) {
                     renderer.render(scene.default_camera);
                     ++rendered;
+                    if (check_running_mean) add_raw_ao(renderer, raw_sum);
                 }
+                if (check_running_mean) print_running_mean_check(renderer, raw_sum, name, n);
                 const Images image = read_images(renderer, w, h);
+                if (!maps.empty()) {
+                    const std::filesystem::path folder(maps);
+                    write_error_map(folder / fmt::format("{}-ao-error-{}.png", name, n), image.ao,
+                                    converged.ao, guides.depth);
+                    deepgi::write_pfm(folder / fmt::format("{}-ao-{}.pfm", name, n), image.ao);
+                    deepgi::write_pfm(folder / fmt::format("{}-ao-raw-{}.pfm", name, n),
+                                      viewport_of(renderer.read_pass_output("ao-raw"), w, h));
+                }
                 const Errors error = errors(image, converged, guides.depth);
                 fmt::print(
                     "| {} | {} | {:.2f}% | {:.2f}% | {:.2f} ({:.2f}% / {:.2f}%) | {:.2f}% | "
