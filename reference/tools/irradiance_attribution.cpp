@@ -38,11 +38,13 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -113,32 +115,44 @@ void write_map(const fs::path& directory, const std::string& name, const deepgi:
 }
 
 int run(int argc, char** argv) {
-    if (argc < 4 || (argc - 4) % 2 != 0) {
-        fmt::print(stderr,
-                   "usage: deepgi_irradiance_attribution DUMP_DIR REFERENCE_DIR SCENE [--radius "
-                   "R|auto] [--layers L] [--guard-band F] [--repeat DUMP_DIR2] [--maps DIR]\n");
-        return 2;
-    }
-    const fs::path dump = argv[1], reference = argv[2];
+    CLI::App app{
+        "Where deep radiosity's error against the visible truth comes from: the stored "
+        "surfaces' exact integral, the screen disk, the taps, the blur (docs/radiosity.md)",
+        "deepgi_irradiance_attribution"};
+    deepgi_tools::use_tool_layout(app);
+    fs::path dump, reference, repeat, maps;
+    std::string scene_name, radius_text = "auto";
     Options options;
-    for (int i = 4; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--radius")
-            options.radius = value == "auto" ? deepgi::auto_length : std::stof(value);
-        else if (key == "--guard-band")
-            options.guard_band = std::stof(value);
-        else if (key == "--layers")
-            options.layers = std::stoi(value);
-        else if (key == "--repeat")
-            options.repeat = value;
-        else if (key == "--maps")
-            options.maps = value;
-        else
-            throw std::runtime_error("unknown option " + key);
-    }
-    if (options.layers != 1 && options.layers != 2) throw std::runtime_error("--layers: 1 or 2");
-    if (!(options.radius > 0.0f) && options.radius != deepgi::auto_length)
-        throw std::runtime_error("--radius must be > 0 or auto");
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_scene(app, scene_name);
+    app.add_option("--radius", radius_text,
+                   "The gather radius in scene units, or auto as deepgi --radiosity-radius")
+        ->check(CLI::Validator(
+            [](const std::string& text) -> std::string {
+                if (text == "auto") return "";
+                float value = 0.0f;
+                const auto [end, error] =
+                    std::from_chars(text.data(), text.data() + text.size(), value);
+                if (error != std::errc() || end != text.data() + text.size() || !(value > 0.0f) ||
+                    !std::isfinite(value))
+                    return "must be a finite number > 0, or auto";
+                return "";
+            },
+            "R|auto"))
+        ->capture_default_str();
+    app.add_option("--layers", options.layers, "The G-buffer layers of the visible truth (1 or 2)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
+    deepgi_tools::add_guard_band(app, options.guard_band);
+    app.add_option("--repeat", repeat,
+                   "A second dump of the same configuration with another temporal offset")
+        ->check(CLI::ExistingDirectory);
+    app.add_option("--maps", maps, "A folder for the error maps (PNG and PFM)");
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
+    if (radius_text != "auto") options.radius = std::stof(radius_text);
+    if (!repeat.empty()) options.repeat = repeat;
+    if (!maps.empty()) options.maps = maps;
 
     std::array<Layer, 2> layers;
     for (int j = 0; j < 2; ++j) {
@@ -175,7 +189,7 @@ int run(int argc, char** argv) {
         if (image.width != w || image.height != h || image.channels != 3)
             throw std::runtime_error("a dumped E differs in size");
 
-    const deepgi::Scene scene = deepgi::load_scene(argv[3]);
+    const deepgi::Scene scene = deepgi::load_scene(scene_name);
     deepgi::RenderSettings settings;
     settings.guard_band_fraction = options.guard_band;
     // The 16:9 viewport whose internal size is w x h with this guard band.
@@ -365,7 +379,7 @@ int run(int argc, char** argv) {
     const double mean = total / (3.0 * double(pixels));
 
     fmt::print("{}: radius {:.3f}, {} layer(s), {} compared pixels, visible truth mean {:.4f}\n",
-               argv[3], radius, options.layers, pixels, mean);
+               scene_name, radius, options.layers, pixels, mean);
     // The truth's own noise: of the whole E's estimate (the split's parts
     // share its samples); E|N(0, s)| = s sqrt(2 / pi).
     double truth_noise = 0.0;

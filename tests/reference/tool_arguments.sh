@@ -120,6 +120,19 @@ parses $tool "$dump" warehouse --radius 1.5 --rays 256 --stride 2
 parses $tool "$dump" warehouse --radius auto --threads 2 --guard-band 0.1
 help $tool DUMP_DIR SCENE --radius --guard-band --layers --rays --stride --threads
 
+tool=irradiance_attribution
+bad $tool "SCENE is required" "$dump" "$ref"
+bad $tool "--radius" "$dump" "$ref" cornell --radius 0
+bad $tool "--radius" "$dump" "$ref" cornell --radius far
+bad $tool "--layers" "$dump" "$ref" cornell --layers 3
+bad $tool "--repeat" "$dump" "$ref" cornell --repeat "$scratch/no-such-folder"
+bad $tool "--guard-band" "$dump" "$ref" cornell --guard-band 7
+bad $tool "--no-such-flag" "$dump" "$ref" cornell --no-such-flag
+# docs/radiosity.md's command lines.
+parses $tool "$dump" "$ref" cornell --repeat "$dump" --maps "$scratch/maps"
+parses $tool "$dump" "$ref" ref-crease --radius 1 --maps "$scratch/maps"
+help $tool DUMP_DIR REFERENCE_DIR SCENE --radius --layers --guard-band --repeat --maps
+
 tool=ao_dense_study
 bad $tool "SCENE is required" "$dump" "$ref"
 bad $tool "--stride" "$dump" "$ref" cornell --stride 0
