@@ -10,7 +10,10 @@
 // third renderer, two layers with estimator M, to the same alternation, and
 // the ratio of the two estimators' SAO passes (one run, frame by frame).
 // --ao-slices / --ao-steps set the slice estimators' (gtao, bitmask) counts,
-// which the tap count does not change either.
+// which the tap count does not change either. --baseline-shaders DIR times,
+// in place of one layer, the same two-layer estimator built from the shader
+// sources in DIR (a copy of shaders/ before a change): the before and after of
+// a shader change, alternated in one run.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -18,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <optional>
 #include <vector>
 
@@ -47,6 +51,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--ao-steps", steps, "gtao and bitmask: samples per slice side")
         ->capture_default_str();
+    std::string baseline_dir;
+    app.add_option("--baseline-shaders", baseline_dir,
+                   "Time the two-layer estimator built from the shader sources in this folder in "
+                   "place of one layer (before and after a shader change, in one alternation)");
     CLI11_PARSE(app, argc, argv);
 
     return deepgi::bench::run("sao_bench", [&] {
@@ -74,13 +82,28 @@ int main(int argc, char** argv) {
             against.ao.bias = deepgi::default_ao_bias(against.ao.method);
         }
 
+        if (!baseline_dir.empty() &&
+            !std::filesystem::is_regular_file(std::filesystem::path(baseline_dir) / "sao.frag"))
+            throw deepgi::InputError(
+                fmt::format("--baseline-shaders {} holds no sao.frag", baseline_dir));
+
         deepgi::HeadlessContext context;
         deepgi::study::ScratchFolder headers;
         const deepgi::ShaderLoader loader = deepgi::study::loader_with_override(headers.path());
+        // The baseline's sources come first, so that its sao.frag and the
+        // includes beside it win; the run's ao_taps.glsl is not among them.
+        std::optional<deepgi::ShaderLoader> baseline_loader;
+        if (!baseline_dir.empty()) {
+            auto dirs = loader.include_dirs();
+            dirs.insert(dirs.begin(), std::filesystem::path(baseline_dir));
+            baseline_loader.emplace(dirs);
+        }
+        const std::string first_column = baseline_loader ? "baseline, 2 layers" : "1 layer";
         std::string measured;
         fmt::print(
-            "| scene | N | tau | 1 layer (ms) | 2 layers (ms) | 2 / 1 | blur (ms) | depth pyramid "
+            "| scene | N | tau | {} (ms) | 2 layers (ms) | 2 / {} | blur (ms) | depth pyramid "
             "(ms) |{}\n",
+            first_column, baseline_loader ? "baseline" : "1",
             against_name.empty()
                 ? ""
                 : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} |", against_name));
@@ -92,7 +115,8 @@ int main(int argc, char** argv) {
                 spiral::codegen::write_file_atomically(
                     headers.path() / "ao_taps.glsl",
                     spiral::codegen::make_gather_header("ao", n, tau, {"sao_bench"}));
-                deepgi::Renderer one(scene, one_layer, loader);
+                deepgi::Renderer one(scene, baseline_loader ? settings : one_layer,
+                                     baseline_loader ? *baseline_loader : loader);
                 deepgi::Renderer two(scene, settings, loader);
                 std::optional<deepgi::Renderer> other;
                 if (!against_name.empty()) other.emplace(scene, against, loader);
