@@ -10,7 +10,8 @@ ctest --test-dir build --output-on-failure -j "$(nproc)" || status=$?
 # The missed targets again, at the end of the log (print_targets.sh).
 for suite in "AO accuracy targets:ao-accuracy-targets.md" \
              "Radiosity accuracy targets:radiosity-accuracy-targets.md" \
-             "AO temporal targets:ao-temporal-targets.md"; do
+             "AO temporal targets:ao-temporal-targets.md" \
+             "Temporal convergence targets:temporal-convergence-targets.md"; do
     if test -s "build/tests/runtime/${suite#*:}"; then
         echo
         (cd build/tests/runtime && sh ../../../tests/runtime/print_targets.sh "${suite%%:*}" "${suite#*:}") || true
