@@ -52,7 +52,10 @@ inline std::string plain_number_problem(const std::string& text, const std::stri
 
 inline void require_plain_numbers(CLI::App& app) {
     for (CLI::Option* option : app.get_options()) {
-        const std::string type = option->get_type_name();
+        // An option with a check (CLI::Range, CLI::PositiveNumber) has the
+        // check's description after a colon: "INT:POSITIVE".
+        std::string type = option->get_type_name();
+        type = type.substr(0, type.find(':'));
         if (type != "INT" && type != "UINT" && type != "FLOAT") continue;
         // A transform, not a check: CLI11 hands a check a copy of the text.
         option->transform(CLI::Validator(

@@ -11,6 +11,7 @@ ctest --test-dir build --output-on-failure -j "$(nproc)" || status=$?
 for suite in "AO accuracy targets:ao-accuracy-targets.md" \
              "Radiosity accuracy targets:radiosity-accuracy-targets.md" \
              "AO temporal targets:ao-temporal-targets.md" \
+             "Radiosity visibility targets:radiosity-visibility-targets.md" \
              "Temporal convergence targets:temporal-convergence-targets.md"; do
     if test -s "build/tests/runtime/${suite#*:}"; then
         echo

@@ -1,6 +1,5 @@
 #include "command_line.hpp"
 
-#include "../strict_numbers.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/window_controls.hpp"
@@ -16,49 +15,6 @@
 #include <vector>
 
 namespace deepgi_app {
-
-namespace {
-
-// The contract is one line: a name with a newline in it (a scene, a path)
-// must not start a second one, so control characters are written escaped.
-std::string one_line(std::string_view text) {
-    std::string line;
-    for (const char c : text) {
-        if (c == '\n')
-            line += "\\n";
-        else if (c == '\r')
-            line += "\\r";
-        else if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
-            line += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
-        else
-            line += c;
-    }
-    return line;
-}
-
-void report(std::string_view command, std::string_view message) {
-    fmt::print(stderr, "{}: error: {}\n", command, one_line(message));
-}
-
-}  // namespace
-
-std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const* argv,
-                                      std::string_view command) {
-    spiral_cli::require_plain_numbers(app);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        fmt::print("{}", app.help());
-        return 0;
-    } catch (const CLI::ParseError& error) {
-        // CLI11 messages can span lines; the contract is one line.
-        std::string message = error.what();
-        std::replace(message.begin(), message.end(), '\n', ' ');
-        report(command, message);
-        return exit_bad_input;
-    }
-    return std::nullopt;
-}
 
 namespace {
 
@@ -98,21 +54,22 @@ int run_reporting_errors(std::string_view command, const std::function<int()>& w
         spiral::fileio::close_standard_output();
         return status;
     } catch (const deepgi::InputError& error) {
-        report(command, error.what());
+        spiral_apps::report_error(command, error.what());
         return exit_bad_input;
     } catch (const spiral::fileio::WriteError& error) {  // output path or full disk
-        report(command, error.what());
+        spiral_apps::report_error(command, error.what());
         return exit_bad_input;
     } catch (const std::filesystem::filesystem_error& error) {
         // A path given on the command line that cannot be examined or made (a
         // symlink loop, an over-long name, /proc): the input's fault. Named
         // without the library's "filesystem error: status:" prefix.
         const std::string path = error.path1().string();
-        report(command, path.empty() ? error.code().message()
-                                     : fmt::format("'{}': {}", path, error.code().message()));
+        spiral_apps::report_error(
+            command, path.empty() ? error.code().message()
+                                  : fmt::format("'{}': {}", path, error.code().message()));
         return exit_bad_input;
     } catch (const std::exception& error) {
-        report(command, error.what());
+        spiral_apps::report_error(command, error.what());
         return 1;
     }
 }

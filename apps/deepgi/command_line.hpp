@@ -2,7 +2,10 @@
 // What every deepgi command (the renderer, `reference`, `report`) does with a
 // command line it cannot parse and with the errors its work throws: one line
 // on stderr that starts with the command's name, exit status 2 for bad input
-// and 1 for anything else.
+// and 1 for anything else. The parse errors are command_line_errors.hpp's,
+// shared with the measuring tools.
+#include "command_line_errors.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -12,12 +15,10 @@
 
 namespace deepgi_app {
 
-inline constexpr int exit_bad_input = 2;
-
-// Parses the command line. Returns the exit status when the command should
-// stop here: 0 after printing --help, exit_bad_input after a parse error.
-std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const* argv,
-                                      std::string_view command);
+using spiral_apps::exit_bad_input;
+// Returns the exit status when the command should stop here: 0 after
+// printing --help, exit_bad_input after a parse error.
+using spiral_apps::parse_command_line;
 
 // The end of `deepgi --help`: the subcommands, every scene --scene accepts,
 // and the window's keys, so that nothing the program does needs the docs to

@@ -7,6 +7,7 @@
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -29,43 +30,50 @@ int main(int argc, char** argv) {
 }
 
 int run(int argc, char** argv) {
-    if (argc < 4) {
-        fmt::print(stderr,
-                   "usage: deepgi_ao_dense_study DUMP REF SCENE [--bias M] [--footprint K] "
-                   "[--subtract 0|1] [--clamp C] [--cos-phi 0|1] [--reach K] [--sub S] "
-                   "[--layers L] [--stride S] [--radius R]\n");
-        return 2;
-    }
-    const std::filesystem::path dump = argv[1], reference = argv[2];
+    CLI::App app{
+        "What the solid-angle estimator converges to with every pixel of the disk a "
+        "tap, against the ray-traced ambient visibility (docs/deep-sao.md)",
+        "deepgi_ao_dense_study"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    std::string scene_name;
     float bias = 0.01f, footprint_factor = 0.5f, clamp_view = 0.1f, reach = 1.0f, radius = 0.5f;
     int subtract = 1, cos_phi = 0, sub = 1, layers = 2, stride = 3;
-    for (int i = 4; i + 1 < argc; i += 2) {
-        const std::string key = argv[i];
-        const float value = std::stof(argv[i + 1]);
-        if (key == "--bias")
-            bias = value;
-        else if (key == "--footprint")
-            footprint_factor = value;
-        else if (key == "--subtract")
-            subtract = int(value);
-        else if (key == "--clamp")
-            clamp_view = value;
-        else if (key == "--cos-phi")
-            cos_phi = int(value);
-        else if (key == "--reach")
-            reach = value;
-        else if (key == "--sub")
-            sub = int(value);
-        else if (key == "--layers")
-            layers = int(value);
-        else if (key == "--stride")
-            stride = int(value);
-        else if (key == "--radius")
-            radius = value;
-        else
-            throw std::runtime_error("unknown option " + key);
-    }
-    if ((argc - 4) % 2 != 0) throw std::runtime_error("an option lacks its value");
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_scene(app, scene_name);
+    app.add_option("--bias", bias, "The bias beta in metres")->capture_default_str();
+    app.add_option("--footprint", footprint_factor,
+                   "The footprint term of the bias, in pixel sizes at the pixel's depth")
+        ->capture_default_str();
+    app.add_option("--subtract", subtract,
+                   "1: the bias is subtracted from v.n; 0: it only thresholds it")
+        ->check(CLI::Range(0, 1))
+        ->capture_default_str();
+    app.add_option("--clamp", clamp_view,
+                   "The least |cos| between a tap's normal and the view ray in its area")
+        ->capture_default_str();
+    app.add_option(
+           "--cos-phi", cos_phi,
+           "1: each tap's area is also scaled by the cosine of its view ray to the view axis")
+        ->check(CLI::Range(0, 1))
+        ->capture_default_str();
+    app.add_option("--reach", reach, "The pixels searched, as a share of the radius")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--sub", sub, "Sub-pixel points per tap pixel along each axis")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--layers", layers, "The G-buffer layers read (1 or 2)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
+    app.add_option("--stride", stride, "Every stride-th pixel in x and y")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--radius", radius, "The AO radius in metres")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     const auto depth0 = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
     const auto depth1 = deepgi::read_pfm(dump / "gbuffer-depth-layer1.pfm");
     const auto normal0 = deepgi::read_pfm(dump / "gbuffer-normal-layer0.pfm");
@@ -74,7 +82,7 @@ int run(int argc, char** argv) {
     const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
     const int w = depth0.width, h = depth0.height;
     deepgi::RenderSettings settings;
-    const deepgi::Scene scene = deepgi::load_scene(argv[3]);
+    const deepgi::Scene scene = deepgi::load_scene(scene_name);
     // The viewport whose internal size is w x h with the default guard band
     // (16:9 sizes, as measure_ao.sh renders).
     for (int vh = 1; vh <= h; ++vh) {

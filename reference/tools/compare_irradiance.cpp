@@ -9,6 +9,7 @@
 // without a sample (confidence 0). First it checks the light model: the dumped
 // direct light against the traced direct light at the same points.
 #include "deepgi/image_io.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -19,14 +20,18 @@
 #include <vector>
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        fmt::print(stderr,
-                   "usage: deepgi_compare_irradiance DUMP_DIR REFERENCE_DIR GUARD_PIXELS\n");
-        return 2;
-    }
+    CLI::App app{
+        "Deep radiosity's layer-0 irradiance of a dump against the ray-traced one-bounce "
+        "irradiance (docs/reference.md)",
+        "deepgi_compare_irradiance"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    int guard = 0;
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_guard_pixels(app, guard);
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     try {
-        const std::filesystem::path dump = argv[1], reference = argv[2];
-        const int guard = std::stoi(argv[3]);
         const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
         const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
         const auto truth = deepgi::read_pfm(reference / "reference-irradiance.pfm");

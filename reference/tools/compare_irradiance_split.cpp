@@ -10,6 +10,7 @@
 // sum(E - T) / sum T against the whole truth and the visible truth (channels
 // summed). With LABEL, last a Markdown table row for the blurred E.
 #include "deepgi/image_io.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -18,20 +19,24 @@
 #include <string>
 
 int main(int argc, char** argv) {
-    if (argc != 5 && argc != 6) {
-        fmt::print(stderr,
-                   "usage: deepgi_compare_irradiance_split DUMP_DIR REFERENCE_DIR "
-                   "GUARD_PIXELS LAYERS [LABEL]\n");
-        return 2;
-    }
+    CLI::App app{
+        "Deep radiosity's irradiance of a dump against the part of the ray-traced "
+        "one-bounce irradiance its layers could hold (docs/reference.md)",
+        "deepgi_compare_irradiance_split"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    int guard = 0, layers = 2;
+    std::string label;
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_guard_pixels(app, guard);
+    app.add_option("LAYERS", layers, "The G-buffer layers the dump's gather read (1 or 2)")
+        ->required()
+        ->check(CLI::Range(1, 2));
+    CLI::Option* label_option =
+        app.add_option("LABEL", label, "With a label, last a Markdown table row for the blurred E");
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     try {
-        const std::filesystem::path dump = argv[1], reference = argv[2];
-        const int guard = std::stoi(argv[3]);
-        const int layers = std::stoi(argv[4]);
-        if (layers != 1 && layers != 2) {
-            fmt::print(stderr, "LAYERS must be 1 or 2, got {}\n", argv[4]);
-            return 2;
-        }
         const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
         const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
         const auto truth = deepgi::read_pfm(reference / "reference-irradiance.pfm");
@@ -102,11 +107,11 @@ int main(int argc, char** argv) {
                 file, errors.mae_whole, errors.bias_whole, errors.mae_visible, errors.bias_visible);
             blurred = errors;
         }
-        if (argc == 6)
+        if (label_option->count() > 0)
             fmt::print(
                 "| {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:+.3f} "
                 "|\n",
-                argv[5], layers, shares[0] / whole, shares[1] / whole, shares[2] / whole,
+                label, layers, shares[0] / whole, shares[1] / whole, shares[2] / whole,
                 blurred.mae_whole, blurred.bias_whole, blurred.mae_visible, blurred.bias_visible);
     } catch (const std::exception& error) {
         fmt::print(stderr, "deepgi_compare_irradiance_split: {}\n", error.what());

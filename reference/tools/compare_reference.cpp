@@ -19,6 +19,7 @@
 // viewport). A share far above 5% names a band of the view, such as the
 // surfaces level with the eye, which the G-buffer samples edge-on.
 #include "deepgi/image_io.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -31,13 +32,16 @@
 #include <vector>
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        fmt::print(stderr, "usage: deepgi_compare_reference DUMP_DIR REFERENCE_DIR GUARD_PIXELS\n");
-        return 2;
-    }
+    CLI::App app{"Deep SAO of a dump against the ray-traced ambient visibility (docs/reference.md)",
+                 "deepgi_compare_reference"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    int guard = 0;
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_guard_pixels(app, guard);
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     try {
-        const std::filesystem::path dump = argv[1], reference = argv[2];
-        const int guard = std::stoi(argv[3]);
         const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
         const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
         if (raster.width != traced.width || raster.height != traced.height) {

@@ -17,6 +17,7 @@
 //     and keeps the shading's own error (the hit texel's lit radiance).
 // Prints one line of key=value pairs.
 #include "deepgi/image_io.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -26,14 +27,17 @@
 #include <string>
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        fmt::print(stderr,
-                   "usage: deepgi_compare_reflections DUMP_DIR REFERENCE_DIR GUARD_PIXELS\n");
-        return 2;
-    }
+    CLI::App app{
+        "The reflection pass of a dump against the traced mirror reflections (docs/reflections.md)",
+        "deepgi_compare_reflections"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    int guard = 0;
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_guard_pixels(app, guard);
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     try {
-        const std::filesystem::path dump = argv[1], reference = argv[2];
-        const int guard = std::stoi(argv[3]);
         const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
         const auto hit = deepgi::read_pfm(dump / "reflection-hit.pfm");
         const auto radiance = deepgi::read_pfm(dump / "reflection-radiance.pfm");

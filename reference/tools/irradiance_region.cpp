@@ -27,6 +27,7 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 #include <glm/glm.hpp>
@@ -44,48 +45,62 @@ namespace {
 constexpr float pi = 3.14159265358979f;
 
 int run(int argc, char** argv) {
-    if (argc < 4 || (argc - 4) % 2 != 0) {
-        fmt::print(stderr,
-                   "usage: deepgi_irradiance_region DUMP_DIR REFERENCE_DIR SCENE "
-                   "[--facing X,Y,Z] [--min-cos C] [--box X0,X1,Y0,Y1,Z0,Z1] [--toward R,G,B] "
-                   "[--guard-band F] [--sky-rays N] [--layers L]\n");
-        return 2;
-    }
-    const std::filesystem::path dump = argv[1], reference = argv[2];
+    CLI::App app{
+        "A region's share of its true indirect light: the renderer's E, E + fill and "
+        "indirect light against the ray-traced irradiance (docs/radiosity.md)",
+        "deepgi_irradiance_region"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump, reference;
+    std::string scene_name;
     glm::vec3 facing(0.0f, -1.0f, 0.0f);
     int sky_rays = 256, layers = 2;
     float min_cos = 0.9f, guard_band = deepgi::RenderSettings{}.guard_band_fraction;
     float box[6] = {-1e30f, 1e30f, -1e30f, 1e30f, -1e30f, 1e30f};
     glm::vec3 toward(0.0f);
-    for (int i = 4; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--facing") {
-            if (std::sscanf(value.c_str(), "%f,%f,%f", &facing.x, &facing.y, &facing.z) != 3 ||
-                !(glm::length(facing) > 0.0f))
-                throw std::runtime_error("--facing takes X,Y,Z, not all 0");
-            facing = glm::normalize(facing);
-        } else if (key == "--box") {
-            if (std::sscanf(value.c_str(), "%f,%f,%f,%f,%f,%f", &box[0], &box[1], &box[2], &box[3],
-                            &box[4], &box[5]) != 6)
-                throw std::runtime_error("--box takes X0,X1,Y0,Y1,Z0,Z1");
-        } else if (key == "--toward") {
-            if (std::sscanf(value.c_str(), "%f,%f,%f", &toward.x, &toward.y, &toward.z) != 3 ||
-                !(toward.x + toward.y + toward.z > 0.0f))
-                throw std::runtime_error("--toward takes R,G,B with a positive sum");
-        } else if (key == "--layers") {
-            layers = std::stoi(value);
-            if (layers != 1 && layers != 2) throw std::runtime_error("--layers must be 1 or 2");
-        } else if (key == "--sky-rays") {
-            sky_rays = std::stoi(value);
-            if (sky_rays < 1) throw std::runtime_error("--sky-rays must be at least 1");
-        } else if (key == "--guard-band") {
-            guard_band = std::stof(value);
-        } else if (key == "--min-cos") {
-            min_cos = std::stof(value);
-        } else {
-            throw std::runtime_error("unknown option " + key);
-        }
-    }
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_reference_dir(app, reference);
+    deepgi_tools::add_scene(app, scene_name);
+    app.add_option_function<std::string>(
+           "--facing",
+           [&](const std::string& text) {
+               const auto v = deepgi_tools::comma_numbers(text, 3);
+               if (!v || !(glm::length(glm::vec3((*v)[0], (*v)[1], (*v)[2])) > 0.0f))
+                   throw CLI::ValidationError("--facing", "takes X,Y,Z, not all 0");
+               facing = glm::normalize(glm::vec3((*v)[0], (*v)[1], (*v)[2]));
+           },
+           "The world direction the region's normals face (X,Y,Z)")
+        ->default_str("0,-1,0: ceilings");
+    app.add_option("--min-cos", min_cos,
+                   "The least cosine between a pixel's normal and --facing (-2: every pixel)")
+        ->capture_default_str();
+    app.add_option_function<std::string>(
+           "--box",
+           [&](const std::string& text) {
+               const auto v = deepgi_tools::comma_numbers(text, 6);
+               if (!v) throw CLI::ValidationError("--box", "takes X0,X1,Y0,Y1,Z0,Z1");
+               std::copy(v->begin(), v->end(), box);
+           },
+           "Only the points inside this world-space box (X0,X1,Y0,Y1,Z0,Z1)")
+        ->default_str("everywhere");
+    app.add_option_function<std::string>(
+           "--toward",
+           [&](const std::string& text) {
+               const auto v = deepgi_tools::comma_numbers(text, 3);
+               if (!v || !((*v)[0] + (*v)[1] + (*v)[2] > 0.0f))
+                   throw CLI::ValidationError("--toward", "takes R,G,B with a positive sum");
+               toward = glm::vec3((*v)[0], (*v)[1], (*v)[2]);
+           },
+           "Also the mean tint of E toward this colour (R,G,B)")
+        ->default_str("no tint");
+    deepgi_tools::add_guard_band(app, guard_band);
+    app.add_option("--sky-rays", sky_rays,
+                   "Cosine-weighted directions per pixel for the environment's irradiance E_sky")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--layers", layers, "The G-buffer layers of the visible truth (1 or 2)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     auto read = [&](const std::filesystem::path& folder, const char* name) {
         return deepgi::read_pfm(folder / (std::string(name) + ".pfm"));
     };
@@ -102,12 +117,12 @@ int run(int argc, char** argv) {
     const auto part0 = read(reference, "reference-irradiance-layer0");
     const auto part1 = read(reference, "reference-irradiance-layer1");
     const auto filtered = read(dump, "radiosity-irradiance-layer0");
-    const deepgi::RayScene rays(deepgi::load_scene(argv[3]));
+    const deepgi::RayScene rays(deepgi::load_scene(scene_name));
     const int w = raster.width, h = raster.height;
     if (truth.width != w || truth.height != h)
         throw std::runtime_error(fmt::format("size mismatch: dump {}x{}, reference {}x{}", w, h,
                                              truth.width, truth.height));
-    const deepgi::Scene scene = deepgi::load_scene(argv[3]);
+    const deepgi::Scene scene = deepgi::load_scene(scene_name);
     // The 16:9 viewport whose internal size is w x h with this guard band.
     deepgi::RenderSettings settings;
     settings.guard_band_fraction = guard_band;

@@ -22,6 +22,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
+#include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -112,42 +113,50 @@ PixelSums trace_pixel(const deepgi::RayScene& scene, const deepgi::LayerClassifi
 }
 
 int run(int argc, char** argv) {
-    if (argc < 3 || (argc - 3) % 2 != 0) {
-        fmt::print(stderr,
-                   "usage: deepgi_irradiance_unoccluded_study DUMP_DIR SCENE [--radius R|auto] "
-                   "[--layers L] [--rays N] [--stride S] [--threads T] [--guard-band F]\n");
-        return 2;
-    }
-    const std::filesystem::path dump = argv[1];
+    CLI::App app{
+        "What a gather without a visibility test converges to: every surface the "
+        "layers hold within the radius, against the dump's E (docs/radiosity.md)",
+        "deepgi_irradiance_unoccluded_study"};
+    deepgi_tools::use_tool_layout(app);
+    std::filesystem::path dump;
+    std::string scene_name;
     Options options;
-    for (int i = 3; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--radius")
-            options.radius = value == "auto" ? deepgi::auto_length : std::stof(value);
-        else if (key == "--guard-band")
-            options.guard_band = std::stof(value);
-        else if (key == "--layers")
-            options.layers = std::stoi(value);
-        else if (key == "--rays")
-            options.rays = std::stoi(value);
-        else if (key == "--stride")
-            options.stride = std::stoi(value);
-        else if (key == "--threads")
-            options.threads = std::stoi(value);
-        else
-            throw std::runtime_error("unknown option " + key);
-    }
-    if (options.layers != 1 && options.layers != 2) throw std::runtime_error("--layers: 1 or 2");
-    if (options.rays < 1 || options.stride < 1 || options.threads < 1)
-        throw std::runtime_error("--rays, --stride and --threads must be at least 1");
-    if (!(options.radius > 0.0f) && options.radius != deepgi::auto_length)
-        throw std::runtime_error("--radius must be > 0 or auto");
+    deepgi_tools::add_dump_dir(app, dump);
+    deepgi_tools::add_scene(app, scene_name);
+    app.add_option_function<std::string>(
+           "--radius",
+           [&](const std::string& text) {
+               if (text == "auto") {
+                   options.radius = deepgi::auto_length;
+                   return;
+               }
+               const auto value = deepgi_tools::comma_numbers(text, 1);
+               if (!value || !((*value)[0] > 0.0f))
+                   throw CLI::ValidationError("--radius", "must be a number > 0 or auto");
+               options.radius = (*value)[0];
+           },
+           "The gather's radius in metres, or auto as the renderer picks it")
+        ->default_str("auto");
+    deepgi_tools::add_guard_band(app, options.guard_band);
+    app.add_option("--layers", options.layers, "The G-buffer layers the gather reads (1 or 2)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
+    app.add_option("--rays", options.rays, "Cosine-weighted directions per pixel")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--stride", options.stride, "Every stride-th pixel in x and y")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--threads", options.threads, "Worker threads")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
 
     const auto depth = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
     const auto blurred = deepgi::read_pfm(dump / "radiosity-blurred.pfm");
     const auto filtered = deepgi::read_pfm(dump / "radiosity-irradiance-layer0.pfm");
     const int w = depth.width, h = depth.height;
-    const deepgi::Scene scene = deepgi::load_scene(argv[2]);
+    const deepgi::Scene scene = deepgi::load_scene(scene_name);
     deepgi::RenderSettings settings;
     settings.guard_band_fraction = options.guard_band;
     // The 16:9 viewport whose internal size is w x h with this guard band.
@@ -226,8 +235,8 @@ int run(int argc, char** argv) {
         }
     if (count == 0 || !(visible > 0.0))
         throw std::runtime_error("no light over the compared pixels");
-    fmt::print("{}: radius {:.3f}, {} layer(s), {} pixels, {} directions each\n", argv[2], radius,
-               options.layers, count, options.rays);
+    fmt::print("{}: radius {:.3f}, {} layer(s), {} pixels, {} directions each\n", scene_name,
+               radius, options.layers, count, options.rays);
     fmt::print("unoccluded / visible {:.3f}; hidden surfaces' share of unoccluded {:.3f}\n",
                unoccluded / visible, hidden / unoccluded);
     const char* names[2] = {"radiosity-blurred", "radiosity-irradiance-layer0"};
@@ -237,7 +246,7 @@ int run(int argc, char** argv) {
             "layers MAE {:.3f}, bias {:+.3f}\n",
             names[k], abs_visible[k] / visible, bias_visible[k] / visible,
             abs_unoccluded[k] / unoccluded, bias_unoccluded[k] / unoccluded);
-    fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:+.3f} | {:+.3f} |\n", argv[2], radius,
+    fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:+.3f} | {:+.3f} |\n", scene_name, radius,
                options.layers, unoccluded / visible, hidden / unoccluded, bias_visible[0] / visible,
                bias_unoccluded[0] / unoccluded);
     return 0;

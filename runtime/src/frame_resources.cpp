@@ -97,6 +97,16 @@ void clear_slot(const HistoryPair& pair, GLuint texture) {
 HistoryPair& FrameResources::allocate_history(const std::string& name, GLenum internal_format,
                                               int width, int height) {
     HistoryPair& pair = history_[name];
+    // A reallocation for another setting (the shadow map's size, the
+    // pyramid's depth) re-creates every pass's targets, but history of the
+    // same size and format is still this camera's: kept, with its slot
+    // order, so a still camera's running mean goes on. A new size drops
+    // history anyway (Renderer::set_settings).
+    if (pair.internal_format == internal_format && pair.width == width && pair.height == height)
+        return pair;
+    pair.internal_format = internal_format;
+    pair.width = width;
+    pair.height = height;
     pair.clear_format = internal_format == GL_DEPTH_COMPONENT32F ? GL_DEPTH_COMPONENT : GL_RGBA;
     for (int slot = 0; slot < 2; ++slot) {
         pair.slots[slot] = gl::create_texture_2d(internal_format, width, height);

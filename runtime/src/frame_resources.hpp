@@ -21,6 +21,10 @@ struct HistoryPair {
     gl::Texture slots[2];
     int written_slot = 0;
     GLenum clear_format = GL_RGBA;  // GL_DEPTH_COMPONENT for depth textures
+    // What the slots were created as: a reallocation that asks for the same
+    // keeps them, and the history they hold.
+    GLenum internal_format = 0;
+    int width = 0, height = 0;
 
     GLuint written() const { return slots[written_slot].get(); }
     GLuint previous() const { return slots[1 - written_slot].get(); }
@@ -94,7 +98,8 @@ public:
     void allocate_display(int width, int height);
 
     // ---- history ----
-    // Allocates (or reallocates) a named pair; both slots start cleared.
+    // Allocates a named pair, both slots cleared; a pair of that name, format
+    // and size that exists already is kept as it is, history and all.
     HistoryPair& allocate_history(const std::string& name, GLenum internal_format, int width,
                                   int height);
     HistoryPair& history(std::string_view name);

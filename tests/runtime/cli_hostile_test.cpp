@@ -136,13 +136,15 @@ TEST_CASE("cli: deepgi reference writes its images as one set", "[runtime][cli][
     fs::remove_all(dir);
 }
 
-TEST_CASE("cli: numbers are whole decimal text; names stay on one line",
+TEST_CASE("cli: numbers are whole decimal text, names stay on one line",
           "[runtime][cli][hostile]") {
     const fs::path dir = make_scratch_dir("cli-numbers");
     const std::string out = " --output " + (dir / "a.png").string();
     require_bad_input(render("--ao-radius ''" + out), "--ao-radius");
     require_bad_input(render("--ao-radius 0x1p-2" + out), "--ao-radius");
     require_bad_input(render("--frames 0x10" + out), "--frames");
+    // An option with a range check too.
+    require_bad_input(render("--max-gpu-memory 0x10" + out), "'0x10' is not a whole");
     require_bad_input(reference("--seed -1 --output " + dir.string() + "/set"), "'-1'");
     require_bad_input(reference("--seed 18446744073709551616 --output " + dir.string() + "/set"),
                       "18446744073709551616");

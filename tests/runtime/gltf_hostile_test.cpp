@@ -94,7 +94,7 @@ fs::path scratch(const std::string& tag) {
 
 }  // namespace
 
-TEST_CASE("gltf images: a texture in a buffer view loads; a view past its buffer is refused",
+TEST_CASE("gltf images: a texture in a buffer view loads, a view past its buffer is refused",
           "[runtime][gltf][hostile]") {
     const std::vector<std::uint8_t> png = small_png();
     const std::string valid = textured_glb(png);

@@ -1,7 +1,10 @@
-# Deep radiosity tests (labels runtime and radiosity). RADIOSITY_TAPS /
-# RADIOSITY_TAU (cmake/GeneratedHeaders.cmake) say which pattern the
-# build-time radiosity_taps.glsl holds, so the CPU evaluation uses the same.
-add_executable(deepgi_radiosity_tests radiosity_test.cpp radiosity_visibility_test.cpp)
+# Deep radiosity tests (labels runtime and radiosity): the gather, its
+# temporal filter and its visibility test, in one executable and one ctest
+# entry. RADIOSITY_TAPS / RADIOSITY_TAU (cmake/GeneratedHeaders.cmake) say
+# which pattern the build-time radiosity_taps.glsl holds, so the CPU
+# evaluation uses the same.
+add_executable(deepgi_radiosity_tests radiosity_gather_test.cpp radiosity_temporal_test.cpp
+  radiosity_visibility_test.cpp)
 target_link_libraries(deepgi_radiosity_tests PRIVATE deepgi_sao_reference spiral_catch_main)
 target_include_directories(deepgi_radiosity_tests PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src ${PROJECT_SOURCE_DIR}/shaders)
 set(_radiosity_test_tau 0)
@@ -13,7 +16,15 @@ target_compile_definitions(deepgi_radiosity_tests PRIVATE
   SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
   SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
 add_test(NAME deepgi_radiosity COMMAND deepgi_radiosity_tests "[radiosity]")
-set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600)
+set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600
+  FIXTURES_SETUP radiosity_visibility_figures)
+# The visibility test's targets behind thin occluders, printed; skipped while
+# any is missed.
+add_test(NAME deepgi_radiosity_visibility_targets_missed
+  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "Radiosity visibility targets"
+          radiosity-visibility-targets.md)
+set_tests_properties(deepgi_radiosity_visibility_targets_missed PROPERTIES
+  LABELS "runtime;radiosity" FIXTURES_REQUIRED radiosity_visibility_figures SKIP_RETURN_CODE 77)
 
 # Temporal filter of the AO (labels runtime and sao).
 add_executable(deepgi_ao_temporal_tests ao_temporal_test.cpp)

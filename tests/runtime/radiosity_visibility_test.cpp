@@ -1,32 +1,53 @@
 // The radiosity gather's visibility test on a geometry whose answer is known:
-// an emitting wall that a board hides from the floor in front of it.
+// an emitting wall that a board hides from the floor in front of it, and the
+// same wall behind thinner occluders.
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
+#include "support/targets.hpp"
+#include "test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace deepgi::test {
 namespace {
 
+// What stands between the floor and the emitting wall of wall_behind_board().
+enum class Occluder {
+    board,       // a closed box 0.1 m deep
+    thin_board,  // a closed box 1 cm deep: thinner than any step of the march
+    open_sheet,  // one quad facing the camera: an open mesh, no back face
+};
+
 // Everything black but an emitting wall (z = -8, x in [-2, 2], y in [0, 0.5],
 // facing +z, radiance 1) standing on a floor (y = 0). A board 0.8 m high and
-// 0.1 m thick (z in [-6.05, -5.95]) stands before the wall: from any floor
-// point in front of the board (z > -5.95) the segment to any point of the
-// wall crosses the board's plane below 0.5 m, inside the board, so the wall
-// is hidden there; the floor behind the board (z < -6.9) sees all of it. The
-// camera, 10 m up and looking down, sees the floor on both sides, the board
-// and the wall's face, so layer 0 holds the wall. With everything else black,
-// the wall is the only light the gather can find.
-Scene wall_behind_board() {
+// 6 m wide (0.1 m thick by default, z in [-6.05, -5.95]) stands before the
+// wall: from any floor point in front of the board (z > -5.95) the segment to
+// any point of the wall crosses the board's plane below 0.5 m, inside the
+// board, so the wall is hidden there; the floor behind the board (z < -6.9)
+// sees all of it. The camera, 10 m up and looking down, sees the floor on
+// both sides, the board and the wall's face, so layer 0 holds the wall. With
+// everything else black, the wall is the only light the gather can find. The
+// scene's bounds, and so every `auto` length, are the same for every
+// occluder.
+Scene wall_behind_board(Occluder occluder = Occluder::board) {
     Scene scene;
     scene.name = "test-wall-behind-board";
     SceneBuilder builder;
     const int black = builder.add_material({0.0f, 0.0f, 0.0f});
     const int emitter = builder.add_material({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f});
     builder.add_quad({-6, 0, 4}, {6, 0, 4}, {6, 0, -12}, {-6, 0, -12}, {0, 1, 0}, black);
-    builder.add_box({0.0f, 0.4f, -6.0f}, {3.0f, 0.4f, 0.05f}, black);
+    if (occluder == Occluder::open_sheet) {
+        builder.add_quad({-3.0f, 0.0f, -6.0f}, {3.0f, 0.0f, -6.0f}, {3.0f, 0.8f, -6.0f},
+                         {-3.0f, 0.8f, -6.0f}, {0, 0, 1}, black);
+    } else {
+        const float half_depth = occluder == Occluder::thin_board ? 0.005f : 0.05f;
+        builder.add_box({0.0f, 0.4f, -6.0f}, {3.0f, 0.4f, half_depth}, black);
+    }
     builder.add_quad({-2.0f, 0.0f, -8.0f}, {2.0f, 0.0f, -8.0f}, {2.0f, 0.5f, -8.0f},
                      {-2.0f, 0.5f, -8.0f}, {0, 0, 1}, emitter);
     builder.finish(scene);
@@ -59,15 +80,46 @@ double wall_irradiance(glm::vec3 p, float radius) {
     return sum;
 }
 
-// World position of layer 0's point at pixel (x, y), from read-back depth.
-glm::vec3 floor_point(const FloatImage& depth, const Camera& camera, const RenderSettings& settings,
-                      int x, int y) {
-    const glm::vec2 ray = camera_ray_scale(camera, settings);
-    const float d = depth.at(x, y, 0);
-    const float ndc_x = (float(x) + 0.5f) / float(depth.width) * 2.0f - 1.0f;
-    const float ndc_y = (float(y) + 0.5f) / float(depth.height) * 2.0f - 1.0f;
-    const glm::vec4 camera_space(ndc_x * ray.x * d, ndc_y * ray.y * d, -d, 1.0f);
-    return glm::vec3(glm::inverse(camera_view_matrix(camera)) * camera_space);
+// Mean E of layer 0 over a floor region, after 8 still frames.
+struct Region {
+    double e = 0.0, oracle = 0.0;  // sums of E and of the unoccluded form factor
+    int count = 0, dark = 0;       // pixels, and those whose E is exactly 0
+    double mean() const { return e / count; }
+    double oracle_mean() const { return oracle / count; }
+};
+
+// The floor before the board (z in (-5.7, -3)) and behind it (z in (-7.8,
+// -6.9)), within 1.5 m of the middle, 192x108, one bounce, radius `radius`,
+// with `steps` points of the visibility test (0: none), solids `thickness`
+// deep behind open meshes (the settings' default, 0.2 m, unless given).
+std::pair<Region, Region> floor_irradiance(const Scene& scene, const ShaderLoader& loader,
+                                           int steps, float radius, float thickness = 0.0f) {
+    RenderSettings settings = small_settings(192, 108);
+    if (thickness > 0.0f) settings.ao.thickness = thickness;
+    settings.radiosity.rho_prop = 0.0f;
+    settings.radiosity.radius = radius;
+    settings.radiosity.visibility_steps = steps;
+    Renderer renderer(scene, settings, loader);
+    for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
+    const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
+    const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
+    Region front, behind;
+    for (int y = 0; y < e.height; ++y) {
+        for (int x = 0; x < e.width; ++x) {
+            if (depth.at(x, y, 0) <= 0.0f) continue;
+            const glm::vec3 p = world_point(depth, scene.default_camera, settings, x, y);
+            if (std::abs(p.y) > 0.01f || std::abs(p.x) > 1.5f) continue;
+            Region* region = nullptr;
+            if (p.z < -3.0f && p.z > -5.7f) region = &front;
+            if (p.z < -6.9f && p.z > -7.8f) region = &behind;
+            if (!region) continue;
+            region->e += e.at(x, y, 0);
+            region->oracle += wall_irradiance(p, radius);
+            region->dark += e.at(x, y, 0) == 0.0f;
+            ++region->count;
+        }
+    }
+    return {front, behind};
 }
 
 TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibility test",
@@ -76,38 +128,12 @@ TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibil
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const Scene scene = wall_behind_board();
     const float radius = 6.0f;
-    struct Region {
-        double e = 0.0, oracle = 0.0;
-        int count = 0, dark = 0;
-    };
     Region front[2], behind[2];  // [visibility off, on]
     for (int on = 0; on < 2; ++on) {
-        RenderSettings settings = small_settings(192, 108);
-        settings.radiosity.rho_prop = 0.0f;
-        settings.radiosity.radius = radius;
         // Eight steps along segments up to 5.4 m: 0.68 m apart, about the
         // depth of the floor strip behind the board that the board hides
         // from the camera, so a step behind the board mostly lands inside it.
-        settings.radiosity.visibility_steps = on ? 8 : 0;
-        Renderer renderer(scene, settings, loader);
-        for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
-        const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
-        const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
-        for (int y = 0; y < e.height; ++y) {
-            for (int x = 0; x < e.width; ++x) {
-                if (depth.at(x, y, 0) <= 0.0f) continue;
-                const glm::vec3 p = floor_point(depth, scene.default_camera, settings, x, y);
-                if (std::abs(p.y) > 0.01f || std::abs(p.x) > 1.5f) continue;
-                Region* region = nullptr;
-                if (p.z < -3.0f && p.z > -5.7f) region = &front[on];
-                if (p.z < -6.9f && p.z > -7.8f) region = &behind[on];
-                if (!region) continue;
-                region->e += e.at(x, y, 0);
-                region->oracle += wall_irradiance(p, radius);
-                region->dark += e.at(x, y, 0) == 0.0f;
-                ++region->count;
-            }
-        }
+        std::tie(front[on], behind[on]) = floor_irradiance(scene, loader, on ? 8 : 0, radius);
     }
     for (int on = 0; on < 2; ++on) {
         REQUIRE(front[on].count > 200);
@@ -132,12 +158,84 @@ TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibil
     // region a segment's steps, 0.68 m apart, can straddle the strip behind
     // the board that the board hides from the camera, which is 0.7 m deep at
     // the floor and shallower higher up, so no step lands inside the board
-    // (measured: 414 of 428 pixels dark, 3.4% of the light left).
+    // (measured: 413 of 428 pixels dark, 3.3% of the light left).
     CHECK(front[1].dark >= 0.95 * front[1].count);
     CHECK(front_on <= 0.05 * front_off);
     // Where nothing hides the wall the test removes nothing.
     CHECK(behind_off > 0.75 * behind[0].oracle / behind[0].count);
     CHECK(behind_on == Approx(behind_off).epsilon(1e-6));
+}
+
+TEST_CASE(
+    "radiosity: the visibility test hides the wall behind a 1 cm board as behind a 10 cm one, "
+    "but lets most of its light through an open sheet",
+    "[radiosity]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const float radius = 6.0f;
+    // The target, as for the 10 cm board: behind the occluder the wall adds
+    // at most 5% of its unoccluded light with 8 steps. A closed board 1 cm
+    // deep meets it: its solid is taken two steps deep (1.1 m to 1.4 m
+    // along these segments), which covers the strip the board hides from
+    // the camera. An open sheet, one quad with no back face behind it, is
+    // taken `--ao-thickness` deep (0.2 m here, the settings' default), so a
+    // segment whose steps pass the sheet more than that behind it along the
+    // eye ray leaks: a known miss, with a regression bound about 10% above
+    // the measured leak (docs/radiosity.md, "Thin occluders").
+    spiral::test::TargetTable targets(
+        "radiosity-visibility-targets.md",
+        {{"open sheet/hidden light left/8 steps",
+          {0.77, "0.703 measured at 192x108 after 8 frames, llvmpipe"}}});
+    const auto leak = [](const Region& on, const Region& off) { return on.mean() / off.mean(); };
+
+    const Scene thin = wall_behind_board(Occluder::thin_board);
+    const auto [thin_off, thin_behind_off] = floor_irradiance(thin, loader, 0, radius);
+    const auto [thin_on, thin_behind_on] = floor_irradiance(thin, loader, 8, radius);
+    REQUIRE(thin_off.count > 200);
+    REQUIRE(thin_behind_off.count > 60);
+    targets.check_at_most("1 cm board", "hidden light left", "8 steps", leak(thin_on, thin_off),
+                          0.05);
+    CHECK(thin_on.dark >= 0.95 * thin_on.count);
+    CHECK(thin_behind_on.mean() == Approx(thin_behind_off.mean()).epsilon(1e-6));
+
+    const Scene sheet = wall_behind_board(Occluder::open_sheet);
+    const auto [sheet_off, sheet_behind_off] = floor_irradiance(sheet, loader, 0, radius);
+    REQUIRE(sheet_off.count > 200);
+    REQUIRE(sheet_behind_off.count > 60);
+    // Without the test the sheet's floor gets the wall's unoccluded light,
+    // as the board's does.
+    CHECK(sheet_off.mean() > 0.75 * sheet_off.oracle_mean());
+    CHECK(sheet_off.mean() < 1.25 * sheet_off.oracle_mean());
+    std::vector<double> sheet_leak;  // 4, 8, 16 steps
+    std::vector<int> sheet_dark;
+    for (int steps : {4, 8, 16}) {
+        const auto [on, behind_on] = floor_irradiance(sheet, loader, steps, radius);
+        sheet_leak.push_back(leak(on, sheet_off));
+        sheet_dark.push_back(on.dark);
+        // Where nothing hides the wall the test removes nothing.
+        CHECK(behind_on.mean() == Approx(sheet_behind_off.mean()).epsilon(1e-6));
+    }
+    targets.check_at_most("open sheet", "hidden light left", "8 steps", sheet_leak[1], 0.05);
+    // The cause: the sheet's solid is too shallow. Taken 2 m deep (more than
+    // two steps of these segments) it hides the wall nearly as the boards do.
+    const Region deep_on = floor_irradiance(sheet, loader, 8, radius, 2.0f).first;
+    const double deep_leak = leak(deep_on, sheet_off);
+    CHECK(deep_leak < 0.1);
+    CHECK(deep_leak < 0.2 * sheet_leak[1]);
+    targets.write();
+    WARN(
+        "share of the hidden wall's light left on the floor before the occluder: 1 cm board, 8 "
+        "steps: "
+        << leak(thin_on, thin_off) << " (" << thin_on.dark << " of " << thin_on.count
+        << " pixels dark); open sheet, 4, 8, 16 steps: " << sheet_leak[0] << ", " << sheet_leak[1]
+        << ", " << sheet_leak[2] << " (" << sheet_dark[0] << ", " << sheet_dark[1] << ", "
+        << sheet_dark[2] << " of " << sheet_off.count
+        << " pixels dark); open sheet taken 2 m deep, 8 steps: " << deep_leak);
+    // More steps land more often inside the sheet's shallow solid: the leak
+    // shrinks with the steps but does not end.
+    CHECK(sheet_leak[1] < sheet_leak[0]);
+    CHECK(sheet_leak[2] < sheet_leak[1]);
+    CHECK(sheet_leak[2] > 0.05);
 }
 
 }  // namespace

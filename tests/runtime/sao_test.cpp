@@ -459,8 +459,7 @@ TEST_CASE("sao: the march's solids honour alpha masks as the G-buffer does", "[r
         scene.name = "test-masked-box";
         SceneBuilder builder;
         const int white = builder.add_material({0.8f, 0.8f, 0.8f});
-        builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0},
-                         white);
+        add_floor_below_origin(builder, white);
         builder.add_quad({-1, -1, -3}, {1, -1, -3}, {1, 0.5f, -3}, {-1, 0.5f, -3}, {0, 0, 1},
                          white);
         const int box_material = builder.add_material({0.8f, 0.8f, 0.8f});

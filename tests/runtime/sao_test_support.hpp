@@ -1,12 +1,13 @@
 #pragma once
 // Shared by the deep SAO test files: tiny scenes built in the test (so each
-// expectation can be worked out by hand), tap patterns and kernels other than
-// the build's, and read-back helpers.
+// expectation can be worked out by hand; test_scenes.hpp), tap patterns and
+// kernels other than the build's, and read-back helpers.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/scene_builder.hpp"
 #include "support/runtime_support.hpp"
+#include "test_scenes.hpp"
 
 #include <spiral/codegen.hpp>
 #include <spiral/optimizer.hpp>
@@ -46,54 +47,6 @@ inline RenderSettings small_settings(int width, int height) {
     settings.height = height;
     settings.shadow_map_size = 64;
     return settings;
-}
-
-inline Camera camera_at_origin(float fov_degrees = 60.0f, float near_plane = 0.05f) {
-    Camera camera;
-    camera.vertical_fov = glm::radians(fov_degrees);
-    camera.near_plane = near_plane;
-    return camera;  // at the origin, looking down -Z
-}
-
-// A white quad facing +Z at z = -distance, wide enough to fill any view.
-inline Scene camera_facing_plane(float distance) {
-    Scene scene;
-    scene.name = "test-plane";
-    SceneBuilder builder;
-    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
-    const float extent = 100.0f * distance;
-    builder.add_quad({-extent, -extent, -distance}, {extent, -extent, -distance},
-                     {extent, extent, -distance}, {-extent, extent, -distance}, {0, 0, 1}, white);
-    builder.finish(scene);
-    scene.default_camera = camera_at_origin();
-    scene.camera_path.keys = {scene.default_camera};
-    return scene;
-}
-
-// A floor (y = -1) under a camera at the origin, with a wall and blocks on it,
-// some boxes hidden behind others so layer 1 has surfaces to offer; optionally
-// a quad just beyond the near plane.
-inline Scene occluded_floor(bool with_near_quad = false) {
-    Scene scene;
-    scene.name = "test-floor";
-    SceneBuilder builder;
-    const int white = builder.add_material({0.8f, 0.8f, 0.8f});
-    builder.add_quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -40}, {-20, -1, -40}, {0, 1, 0}, white);
-    builder.add_quad({-20, -1, -6}, {20, -1, -6}, {20, 6, -6}, {-20, 6, -6}, {0, 0, 1}, white);
-    builder.add_box({-0.8f, -0.4f, -3.0f}, {0.5f, 0.6f, 0.5f}, white, 0.3f);
-    builder.add_box({-0.8f, -0.7f, -4.2f}, {0.3f, 0.3f, 0.3f},
-                    white);  // partly behind the first box
-    builder.add_box({1.2f, -0.2f, -4.0f}, {0.3f, 0.8f, 0.3f}, white, -0.5f);
-    builder.add_box({1.0f, -0.8f, -5.0f}, {0.6f, 0.2f, 0.4f}, white);
-    if (with_near_quad) {
-        builder.add_quad({-0.2f, -0.2f, -0.06f}, {0.1f, -0.2f, -0.06f}, {0.1f, 0.1f, -0.051f},
-                         {-0.2f, 0.1f, -0.051f}, {0, 0, 1}, white);
-    }
-    builder.finish(scene);
-    scene.default_camera = camera_at_origin();
-    scene.default_camera.pitch = glm::radians(-15.0f);
-    scene.camera_path.keys = {scene.default_camera};
-    return scene;
 }
 
 }  // namespace deepgi::test

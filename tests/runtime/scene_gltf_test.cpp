@@ -436,7 +436,7 @@ TEST_CASE("gltf loader: a double-sided material gets the back face, wound back, 
     REQUIRE(load(triangle_gltf(file)).indices.size() == 3);
 }
 
-TEST_CASE("gltf loader: emissive strength scales the factor; BLEND is opaque with one warning",
+TEST_CASE("gltf loader: emissive strength scales the factor, BLEND is opaque with one warning",
           "[runtime][gltf]") {
     TriangleFile file;
     file.primitive_extra = R"(,"material":0)";
@@ -595,7 +595,7 @@ TEST_CASE("gltf loader: COLOR_0 is read as float or normalised integers, other f
     CHECK(contains(refusal(dangling.json()), "accessor index out of range"));
 }
 
-TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read; bad values refused",
+TEST_CASE("gltf loader: alpha modes, cutoffs and samplers are read, bad values refused",
           "[runtime][gltf]") {
     auto with_material = [](const std::string& material, const std::string& sampler = "") {
         GltfBuilder b;
