@@ -61,8 +61,9 @@ add_executable(deepgi_temporal_convergence_tests temporal_convergence_test.cpp)
 target_link_libraries(deepgi_temporal_convergence_tests PRIVATE deepgi_still_convergence spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_temporal_convergence_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 add_test(NAME deepgi_temporal_convergence COMMAND deepgi_temporal_convergence_tests "[temporal_convergence]")
-# About 3 minutes of CPU time at 160x90 (most of it the 256 frames of the
-# 76-tap converged images); the timeout leaves room for a loaded machine.
+# 171 s at 160x90 on a lightly loaded 2-core machine (most of it the 256
+# frames of the 76-tap converged images); the timeout leaves room for a
+# loaded one, where it took 600 s.
 set_tests_properties(deepgi_temporal_convergence PROPERTIES LABELS "runtime;radiosity" TIMEOUT 1200
   FIXTURES_SETUP temporal_convergence_figures)
 # The convergence targets, printed; skipped while any is missed.
