@@ -11,7 +11,8 @@ ctest --test-dir build --output-on-failure -j "$(nproc)" || status=$?
 for suite in "AO accuracy targets:ao-accuracy-targets.md" \
              "Radiosity accuracy targets:radiosity-accuracy-targets.md" \
              "AO temporal targets:ao-temporal-targets.md" \
-             "Radiosity visibility targets:radiosity-visibility-targets.md"; do
+             "Radiosity visibility targets:radiosity-visibility-targets.md" \
+             "Temporal convergence targets:temporal-convergence-targets.md"; do
     if test -s "build/tests/runtime/${suite#*:}"; then
         echo
         (cd build/tests/runtime && sh ../../../tests/runtime/print_targets.sh "${suite%%:*}" "${suite#*:}") || true

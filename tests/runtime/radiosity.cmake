@@ -50,3 +50,24 @@ target_compile_definitions(deepgi_lighting_change_tests PRIVATE
   SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
 add_test(NAME deepgi_lighting_change COMMAND deepgi_lighting_change_tests "[radiosity]")
 set_tests_properties(deepgi_lighting_change PROPERTIES LABELS "runtime;radiosity" TIMEOUT 300)
+
+# Still-camera convergence of the E and AO temporal filters against the
+# converged image: the measurement is a library shared with the benchmark
+# temporal_convergence (tests/bench/runtime), which prints the docs' table.
+add_library(deepgi_still_convergence STATIC still_convergence.cpp)
+target_link_libraries(deepgi_still_convergence PUBLIC deepgi::runtime PRIVATE spiral::codegen fmt::fmt)
+target_include_directories(deepgi_still_convergence PUBLIC ${CMAKE_CURRENT_LIST_DIR} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+add_executable(deepgi_temporal_convergence_tests temporal_convergence_test.cpp)
+target_link_libraries(deepgi_temporal_convergence_tests PRIVATE deepgi_still_convergence spiral_catch_main fmt::fmt)
+target_include_directories(deepgi_temporal_convergence_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+add_test(NAME deepgi_temporal_convergence COMMAND deepgi_temporal_convergence_tests "[temporal_convergence]")
+# 171 s at 160x90 on a lightly loaded 2-core machine (most of it the 256
+# frames of the 76-tap converged images); the timeout leaves room for a
+# loaded one, where it took 600 s.
+set_tests_properties(deepgi_temporal_convergence PROPERTIES LABELS "runtime;radiosity" TIMEOUT 1200
+  FIXTURES_SETUP temporal_convergence_figures)
+# The convergence targets, printed; skipped while any is missed.
+add_test(NAME deepgi_temporal_convergence_targets_missed
+  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "Temporal convergence targets" temporal-convergence-targets.md)
+set_tests_properties(deepgi_temporal_convergence_targets_missed PROPERTIES LABELS "runtime;radiosity"
+  FIXTURES_REQUIRED temporal_convergence_figures SKIP_RETURN_CODE 77)
