@@ -13,7 +13,8 @@
 // (ao_march.glsl): behind the depth the layer stores at the point's pixel,
 // in front of where that surface's solid ends (its back face, at least two
 // steps deep so that a segment crossing a thin part lands inside it; behind
-// an open mesh, with no back face, `thickness` deep), and behind that
+// an open mesh, with no back face, `thickness` deep and also at least two
+// steps, or a segment would step over a single sheet), and behind that
 // surface's plane by more than 1 mm per metre of depth, the reconstruction
 // error of a stored point and its normal, so that X's and Y's own surfaces
 // never hide the segment that leaves them on their front sides. The steps
@@ -41,7 +42,7 @@ bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thick
       if (depth <= 0.0 || z <= depth) continue;
       float back_face = texelFetch(radiosity_backface_depth, ivec3(p, j), 0).r;
       float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
-                                        : depth + thickness;
+                                        : depth + max(thickness, 2.0 * step_length);
       if (z >= solid_end) continue;
       vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
       vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, j), 0).xy);

@@ -45,8 +45,9 @@ inline bool sample_visible(const VisibilityInputs& in, glm::vec3 x, glm::vec3 y)
             const float depth = in.depth[j].at(px, py, 0);
             if (depth <= 0.0f || z <= depth) continue;
             const float back = in.back_face[j].at(px, py, 0);
-            const float solid_end =
-                back > 0.0f ? std::max(back, depth + 2.0f * step_length) : depth + in.thickness;
+            const float solid_end = back > 0.0f
+                                        ? std::max(back, depth + 2.0f * step_length)
+                                        : depth + std::max(in.thickness, 2.0f * step_length);
             if (z >= solid_end) continue;
             const float ndc_x = (float(px) + 0.5f) / float(width) * 2.0f - 1.0f;
             const float ndc_y = (float(py) + 0.5f) / float(height) * 2.0f - 1.0f;

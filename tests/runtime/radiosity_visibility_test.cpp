@@ -168,7 +168,7 @@ TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibil
 
 TEST_CASE(
     "radiosity: the visibility test hides the wall behind a 1 cm board as behind a 10 cm one, "
-    "but lets most of its light through an open sheet",
+    "and behind an open sheet nearly as well",
     "[radiosity]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
@@ -178,14 +178,16 @@ TEST_CASE(
     // deep meets it: its solid is taken two steps deep (1.1 m to 1.4 m
     // along these segments), which covers the strip the board hides from
     // the camera. An open sheet, one quad with no back face behind it, is
-    // taken `--ao-thickness` deep (0.2 m here, the settings' default), so a
-    // segment whose steps pass the sheet more than that behind it along the
-    // eye ray leaks: a known miss, with a regression bound about 10% above
-    // the measured leak (docs/radiosity.md, "Thin occluders").
+    // taken `--ao-thickness` deep (0.2 m here, the settings' default) and at
+    // least two steps, as the boards: taken 0.2 m deep only, it let 70% of
+    // the light through with 8 steps, since a segment's steps passed behind
+    // the sheet further than that. It now leaves 5.03% with 8 steps, a hair
+    // over the target: a known miss, with a regression bound about 10%
+    // above the measured leak (docs/radiosity.md, "Thin occluders").
     spiral::test::TargetTable targets(
         "radiosity-visibility-targets.md",
         {{"open sheet/hidden light left/8 steps",
-          {0.77, "0.703 measured at 192x108 after 8 frames, llvmpipe"}}});
+          {0.055, "0.0503 measured at 192x108 after 8 frames, llvmpipe"}}});
     const auto leak = [](const Region& on, const Region& off) { return on.mean() / off.mean(); };
 
     const Scene thin = wall_behind_board(Occluder::thin_board);
@@ -216,12 +218,12 @@ TEST_CASE(
         CHECK(behind_on.mean() == Approx(sheet_behind_off.mean()).epsilon(1e-6));
     }
     targets.check_at_most("open sheet", "hidden light left", "8 steps", sheet_leak[1], 0.05);
-    // The cause: the sheet's solid is too shallow. Taken 2 m deep (more than
-    // two steps of these segments) it hides the wall nearly as the boards do.
+    // Two steps are deep enough: a solid taken 2 m deep (more than two
+    // steps of these segments) hides no more.
     const Region deep_on = floor_irradiance(sheet, loader, 8, radius, 2.0f).first;
     const double deep_leak = leak(deep_on, sheet_off);
     CHECK(deep_leak < 0.1);
-    CHECK(deep_leak < 0.2 * sheet_leak[1]);
+    CHECK(deep_leak == Approx(sheet_leak[1]).margin(0.005));
     targets.write();
     WARN(
         "share of the hidden wall's light left on the floor before the occluder: 1 cm board, 8 "
@@ -231,11 +233,11 @@ TEST_CASE(
         << ", " << sheet_leak[2] << " (" << sheet_dark[0] << ", " << sheet_dark[1] << ", "
         << sheet_dark[2] << " of " << sheet_off.count
         << " pixels dark); open sheet taken 2 m deep, 8 steps: " << deep_leak);
-    // More steps land more often inside the sheet's shallow solid: the leak
-    // shrinks with the steps but does not end.
+    // More steps land more often inside the sheet's solid: with 16 the
+    // leak is within the target.
     CHECK(sheet_leak[1] < sheet_leak[0]);
-    CHECK(sheet_leak[2] < sheet_leak[1]);
-    CHECK(sheet_leak[2] > 0.05);
+    CHECK(sheet_leak[2] <= sheet_leak[1]);
+    CHECK(sheet_leak[2] <= 0.05);
 }
 
 }  // namespace
