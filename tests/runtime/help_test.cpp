@@ -36,7 +36,8 @@ TEST_CASE("help: deepgi --help names every subcommand and every scene", "[cli][h
     }
 }
 
-TEST_CASE("help: every deepgi option's help shows its default, without parser notation", "[cli][help]") {
+TEST_CASE("help: every deepgi option's help shows its default, without parser notation",
+          "[cli][help]") {
     const std::string command = GENERATE(as<std::string>{}, "", "reference ", "report ");
     const auto help = run_deepgi(command + "--help");
     REQUIRE(help.status == 0);
