@@ -118,6 +118,24 @@ TEST_CASE("gltf images: a texture in a buffer view loads, a view past its buffer
     REQUIRE(contains(message, "image 0 cannot be decoded"));
 }
 
+TEST_CASE("gltf images: a PNG chunk whose length runs past the image is refused before decoding",
+          "[runtime][gltf][hostile]") {
+    // The decoder grows its buffer to a chunk's claimed length before reading
+    // it: an IDAT that claims 1 GiB in a 100-byte file made it ask for 2 GiB.
+    std::vector<std::uint8_t> png = small_png();
+    // The first chunk after the signature is IHDR (13 bytes); the next one's
+    // length field follows its CRC.
+    const std::size_t second = 8 + 12 + 13;
+    REQUIRE(png.size() > second + 8);
+    png[second] = 0x40;  // 1 GiB and more
+    const std::string message = refusal_of(textured_glb(png), true);
+    INFO(message);
+    REQUIRE(contains(message, "image 0: a PNG chunk at byte 33 claims"));
+    REQUIRE(contains(message, "past the end of the image"));
+    // The same check passes the intact image.
+    REQUIRE(refusal_of(textured_glb(small_png()), true).empty());
+}
+
 TEST_CASE("gltf GLB: chunks that run past the file and empty buffers are refused",
           "[runtime][gltf][hostile]") {
     std::string file = textured_glb(small_png());

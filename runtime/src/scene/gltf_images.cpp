@@ -5,8 +5,11 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 
 namespace deepgi::gltf {
 
@@ -70,6 +73,37 @@ TextureSampler read_sampler(const tinygltf::Sampler& source, int index, const Gl
     return sampler;
 }
 
+namespace {
+
+struct PngChunk {
+    std::size_t offset = 0;
+    std::uint32_t length = 0;
+};
+
+// The first chunk of a PNG whose length field runs past the end of the file,
+// if any. stb_image grows its buffer for the compressed data to a chunk's
+// claimed length before it reads the chunk, so a 200-byte file whose IDAT
+// claims 1 GiB asked for 2 GiB; a chunk is only handed over once it is
+// proved inside the bytes. Not a PNG: nothing to check here.
+std::optional<PngChunk> png_chunk_past_end(const unsigned char* bytes, std::size_t size) {
+    static constexpr unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size < 8 || std::memcmp(bytes, signature, 8) != 0) return std::nullopt;
+    std::size_t offset = 8;
+    // length (4 bytes, big-endian), type (4), data (length), CRC (4)
+    while (size - offset >= 8) {
+        const std::uint32_t length = std::uint32_t(bytes[offset]) << 24 |
+                                     std::uint32_t(bytes[offset + 1]) << 16 |
+                                     std::uint32_t(bytes[offset + 2]) << 8 | bytes[offset + 3];
+        if (length > size - offset - 8 || size - offset - 8 - length < 4)
+            return PngChunk{offset, length};
+        if (std::memcmp(bytes + offset + 4, "IEND", 4) == 0) break;
+        offset += 12 + std::size_t(length);
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
 // tinygltf decodes every image while it parses; this decoder checks each
 // image's size from its header first, so a 300 KB PNG cannot ask for
 // gigabytes. Images always come out as 8 bits per channel.
@@ -108,6 +142,14 @@ bool load_image_within_limits(tinygltf::Image* image, int image_index, std::stri
     }
     if (bytes == nullptr || size <= 0) {
         if (error) *error += fmt::format("image {} is empty. ", image_index);
+        return false;
+    }
+    if (const auto chunk = png_chunk_past_end(bytes, std::size_t(size))) {
+        if (error)
+            *error += fmt::format(
+                "image {}: a PNG chunk at byte {} claims {} bytes, past the end of the image's {} "
+                "bytes. ",
+                image_index, chunk->offset, chunk->length, size);
         return false;
     }
     int width = 0;
