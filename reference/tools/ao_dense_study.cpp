@@ -7,6 +7,7 @@
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "dump_settings.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -81,23 +82,11 @@ int run(int argc, char** argv) {
     const auto truth = deepgi::read_pfm(reference / "reference-ao-visibility.pfm");
     const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");
     const int w = depth0.width, h = depth0.height;
-    deepgi::RenderSettings settings;
     const deepgi::Scene scene = deepgi::load_scene(scene_name);
-    // The viewport whose internal size is w x h with the default guard band
-    // (16:9 sizes, as measure_ao.sh renders).
-    for (int vh = 1; vh <= h; ++vh) {
-        settings.height = vh;
-        settings.width = vh * 16 / 9;
-        const auto layout = deepgi::frame_layout(settings);
-        if (layout.internal_height == h && layout.internal_width == w) break;
-    }
+    // The dump of measure_ao.sh: a 16:9 viewport with the default guard band.
+    const deepgi::RenderSettings settings =
+        deepgi_tools::dump_viewport(w, h, deepgi::RenderSettings{}.guard_band_fraction);
     const auto layout = deepgi::frame_layout(settings);
-    if (layout.internal_height != h || layout.internal_width != w) {
-        fmt::print(stderr,
-                   "deepgi_ao_dense_study: {}x{} is not a 16:9 size with the default guard band\n",
-                   w, h);
-        return 2;
-    }
     const glm::mat4 projection = deepgi::guard_band_projection(scene.default_camera, settings);
     const glm::vec2 ray_scale{1.0f / projection[0][0], 1.0f / projection[1][1]};
     auto position = [&](float x, float y, float z) {

@@ -38,6 +38,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
+#include "dump_settings.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -190,23 +191,9 @@ int run(int argc, char** argv) {
             throw std::runtime_error("a dumped E differs in size");
 
     const deepgi::Scene scene = deepgi::load_scene(scene_name);
-    deepgi::RenderSettings settings;
-    settings.guard_band_fraction = options.guard_band;
-    // The 16:9 viewport whose internal size is w x h with this guard band.
-    for (int vh = 1; vh <= h; ++vh) {
-        settings.height = vh;
-        settings.width = vh * 16 / 9;
-        const auto layout = deepgi::frame_layout(settings);
-        if (layout.internal_height == h && layout.internal_width == w) break;
-    }
+    const deepgi::RenderSettings settings = deepgi_tools::with_scene_lengths(
+        deepgi_tools::dump_viewport(w, h, options.guard_band), scene, options.radius);
     const auto layout = deepgi::frame_layout(settings);
-    if (layout.internal_height != h || layout.internal_width != w)
-        throw std::runtime_error(
-            fmt::format("{}x{} is not a 16:9 size with this guard band", w, h));
-    for (const deepgi::NumericSetting& row : deepgi::numeric_settings())
-        if (deepgi::is_scene_length(row)) row.set(settings, deepgi::auto_length);
-    settings.radiosity.radius = options.radius;
-    settings = deepgi::resolve_auto_lengths(settings, deepgi::scene_bounding_radius(scene));
     const float radius = settings.radiosity.radius;
     const double radius_squared = double(radius) * radius;
     const deepgi::Camera& camera = scene.default_camera;

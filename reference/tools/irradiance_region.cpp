@@ -27,6 +27,7 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
+#include "dump_settings.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -123,19 +124,8 @@ int run(int argc, char** argv) {
         throw std::runtime_error(fmt::format("size mismatch: dump {}x{}, reference {}x{}", w, h,
                                              truth.width, truth.height));
     const deepgi::Scene scene = deepgi::load_scene(scene_name);
-    // The 16:9 viewport whose internal size is w x h with this guard band.
-    deepgi::RenderSettings settings;
-    settings.guard_band_fraction = guard_band;
-    for (int vh = 1; vh <= h; ++vh) {
-        settings.height = vh;
-        settings.width = vh * 16 / 9;
-        const auto layout = deepgi::frame_layout(settings);
-        if (layout.internal_height == h && layout.internal_width == w) break;
-    }
+    const deepgi::RenderSettings settings = deepgi_tools::dump_viewport(w, h, guard_band);
     const auto layout = deepgi::frame_layout(settings);
-    if (layout.internal_height != h || layout.internal_width != w)
-        throw std::runtime_error(
-            fmt::format("{}x{} is not a 16:9 size with this guard band", w, h));
     // Camera-space normals to world space, as compose.frag does.
     const glm::mat4 view = deepgi::camera_view_matrix(scene.default_camera);
     const glm::mat3 to_world = glm::transpose(glm::mat3(view));

@@ -22,6 +22,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
+#include "dump_settings.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -157,24 +158,9 @@ int run(int argc, char** argv) {
     const auto filtered = deepgi::read_pfm(dump / "radiosity-irradiance-layer0.pfm");
     const int w = depth.width, h = depth.height;
     const deepgi::Scene scene = deepgi::load_scene(scene_name);
-    deepgi::RenderSettings settings;
-    settings.guard_band_fraction = options.guard_band;
-    // The 16:9 viewport whose internal size is w x h with this guard band.
-    for (int vh = 1; vh <= h; ++vh) {
-        settings.height = vh;
-        settings.width = vh * 16 / 9;
-        const auto layout = deepgi::frame_layout(settings);
-        if (layout.internal_height == h && layout.internal_width == w) break;
-    }
+    const deepgi::RenderSettings settings = deepgi_tools::with_scene_lengths(
+        deepgi_tools::dump_viewport(w, h, options.guard_band), scene, options.radius);
     const auto layout = deepgi::frame_layout(settings);
-    if (layout.internal_height != h || layout.internal_width != w)
-        throw std::runtime_error(
-            fmt::format("{}x{} is not a 16:9 size with this guard band", w, h));
-    // Every scene length `auto`, as deepgi's command line has them.
-    for (const deepgi::NumericSetting& row : deepgi::numeric_settings())
-        if (deepgi::is_scene_length(row)) row.set(settings, deepgi::auto_length);
-    settings.radiosity.radius = options.radius;
-    settings = deepgi::resolve_auto_lengths(settings, deepgi::scene_bounding_radius(scene));
     const float radius = settings.radiosity.radius;
 
     const deepgi::RayScene rays(scene);
