@@ -15,21 +15,29 @@
 namespace deepgi::test {
 namespace {
 
-TEST_CASE("radiosity: with alpha 0 the temporal filter returns the raw gather", "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+// What most tests below begin with: a GL context, then the cornell scene and
+// a renderer of it with `settings` (the renderer keeps its own copies of the
+// settings and the shader loader).
+struct CornellRenderer {
+    explicit CornellRenderer(const RenderSettings& settings)
+        : renderer(scene, settings, ShaderLoader::from_build_configuration()) {}
+    HeadlessContext context;  // first: the renderer needs it
     const Scene scene = make_builtin_scene("cornell");
+    Renderer renderer;
+};
+
+TEST_CASE("radiosity: with alpha 0 the temporal filter returns the raw gather", "[radiosity]") {
     RenderSettings settings = gather_test_settings();
     settings.radiosity.alpha = 0.0f;
-    Renderer renderer(scene, settings, loader);
-    const auto& keys = scene.camera_path.keys;
+    CornellRenderer cornell(settings);
+    const auto& keys = cornell.scene.camera_path.keys;
     for (std::size_t frame = 0; frame < 4; ++frame) {
-        renderer.render(keys[frame % keys.size()]);
+        cornell.renderer.render(keys[frame % keys.size()]);
         for (int layer = 0; layer < 2; ++layer) {
             const FloatImage raw =
-                renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer));
-            const FloatImage filtered =
-                renderer.read_pass_output(fmt::format("radiosity-irradiance-layer{}", layer));
+                cornell.renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer));
+            const FloatImage filtered = cornell.renderer.read_pass_output(
+                fmt::format("radiosity-irradiance-layer{}", layer));
             INFO("frame " << frame << ", layer " << layer);
             CHECK(max_value(raw) > 0.0f);
             CHECK(filtered.pixels == raw.pixels);
@@ -90,20 +98,17 @@ double relative_rms(const FloatImage& e, const std::vector<double>& truth) {
 
 TEST_CASE("radiosity: under a still camera E is the running mean of every frame's gather",
           "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = gather_test_settings();
     settings.radiosity.rho_prop = 0.0f;
-    Renderer renderer(scene, settings, loader);
+    CornellRenderer cornell(settings);
     // The oracle: the plain average of all raw gathers so far (20 frames, far
     // below the cap), each with its own rotation.
     constexpr int frames = 20;
     std::vector<double> mean;
     std::vector<FloatImage> raws;
     for (int frame = 0; frame < frames; ++frame) {
-        renderer.render(scene.default_camera);
-        raws.push_back(renderer.read_pass_output("radiosity-raw-layer0"));
+        cornell.renderer.render(cornell.scene.default_camera);
+        raws.push_back(cornell.renderer.read_pass_output("radiosity-raw-layer0"));
         const FloatImage& raw = raws.back();
         mean.resize(raw.pixels.size(), 0.0);
         for (std::size_t i = 0; i < raw.pixels.size(); ++i) mean[i] += raw.pixels[i] / frames;
@@ -114,7 +119,7 @@ TEST_CASE("radiosity: under a still camera E is the running mean of every frame'
         for (int b = a + 1; b < frames; ++b) repeated += raws[a].pixels == raws[b].pixels;
     CHECK(repeated == 0);
     const FloatImage& first_raw = raws.front();
-    const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
+    const FloatImage e = cornell.renderer.read_pass_output("radiosity-irradiance-layer0");
     std::size_t within = 0, lit = 0, differs_from_one_frame = 0;
     for (std::size_t p = 0; p < e.pixels.size() / 3; ++p) {
         const double scale = std::max({mean[3 * p], mean[3 * p + 1], mean[3 * p + 2]});
@@ -141,20 +146,18 @@ TEST_CASE(
     "radiosity: under a still camera E converges to the gather's mean over all rotations "
     "and radial shifts, at least as fast as 1/sqrt(frames), and never freezes",
     "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
     const auto taps = build_time_radiosity_taps();
-    const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = small_settings(128, 72);
     settings.shadow_map_size = 512;
     settings.radiosity.rho_prop = 0.0f;  // fixed inputs: the gather's integral is a fixed image
-    Renderer renderer(scene, settings, loader);
-    renderer.render(scene.default_camera);
+    CornellRenderer cornell(settings);
+    cornell.renderer.render(cornell.scene.default_camera);
     // The oracle: the CPU evaluation of the gather on the read-back inputs,
     // averaged over a grid of 32 extra rotations by 16 radial shifts (not the
     // renderer's sequence), which stands for the integral over the disk the
     // taps sweep: the area integral the estimator's weights are made for.
-    const GatherInputs inputs = read_inputs(renderer, scene.default_camera, settings);
+    const GatherInputs inputs =
+        read_inputs(cornell.renderer, cornell.scene.default_camera, settings);
     constexpr int rotations = 32, shifts = 16, samples = rotations * shifts;
     std::vector<double> truth;
     for (int j = 0; j < rotations; ++j) {
@@ -173,15 +176,15 @@ TEST_CASE(
     FloatImage at_64;
     double change_after_64 = 0.0;
     for (int frame = 1; frame <= 72; ++frame) {
-        if (frame > 1) renderer.render(scene.default_camera);
+        if (frame > 1) cornell.renderer.render(cornell.scene.default_camera);
         if (frame == 1 || frame == 4 || frame == 16 || frame == 64) {
-            const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
+            const FloatImage e = cornell.renderer.read_pass_output("radiosity-irradiance-layer0");
             errors.push_back(relative_rms(e, truth));
             if (frame == 64) at_64 = e;
         }
         if (frame == 72) {
-            change_after_64 =
-                relative_change(at_64, renderer.read_pass_output("radiosity-irradiance-layer0"));
+            change_after_64 = relative_change(
+                at_64, cornell.renderer.read_pass_output("radiosity-irradiance-layer0"));
         }
     }
     WARN("relative RMS of E against the mean over "
@@ -202,26 +205,23 @@ TEST_CASE(
 }
 
 TEST_CASE("radiosity: history follows the motion vectors, and a cut starts fresh", "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = gather_test_settings();
     settings.radiosity.rho_prop = 0.0f;
-    Renderer renderer(scene, settings, loader);
-    const Camera a = scene.default_camera;
+    CornellRenderer cornell(settings);
+    const Camera a = cornell.scene.default_camera;
     // Eight still frames from A, then one from B: where B's history is
     // accepted the point moved, so the filter blends E = mix(raw, history,
     // w) with w = min(8 / 9, alpha) = alpha (temporal_accumulation.glsl).
-    for (int frame = 0; frame < 8; ++frame) renderer.render(a);
+    for (int frame = 0; frame < 8; ++frame) cornell.renderer.render(a);
     const float alpha = settings.radiosity.alpha;
-    const FloatImage e_a = renderer.read_pass_output("radiosity-irradiance-layer0");
+    const FloatImage e_a = cornell.renderer.read_pass_output("radiosity-irradiance-layer0");
     Camera b = a;
     b.position += glm::vec3(0.07f, -0.03f, -0.1f);
     b.yaw += 0.03f;
-    renderer.render(b);
-    const FloatImage e_b = renderer.read_pass_output("radiosity-irradiance-layer0");
-    const FloatImage raw_b = renderer.read_pass_output("radiosity-raw-layer0");
-    const FloatImage depth_b = renderer.read_pass_output("gbuffer-depth-layer0");
+    cornell.renderer.render(b);
+    const FloatImage e_b = cornell.renderer.read_pass_output("radiosity-irradiance-layer0");
+    const FloatImage raw_b = cornell.renderer.read_pass_output("radiosity-raw-layer0");
+    const FloatImage depth_b = cornell.renderer.read_pass_output("gbuffer-depth-layer0");
     // The oracle for where each point was: B's pixel projected into camera A
     // with the camera matrices (the renderer uses the motion vectors instead).
     const glm::mat4 a_clip = guard_band_projection(a, settings) * camera_view_matrix(a);
@@ -256,12 +256,13 @@ TEST_CASE("radiosity: history follows the motion vectors, and a cut starts fresh
     CHECK(e_b.pixels != raw_b.pixels);
 
     // A cut drops all history: the filtered E is this frame's raw gather.
-    renderer.render(a, CameraMotion::cut);
+    cornell.renderer.render(a, CameraMotion::cut);
     for (int layer = 0; layer < 2; ++layer) {
         INFO("layer " << layer);
         CHECK(
-            renderer.read_pass_output(fmt::format("radiosity-irradiance-layer{}", layer)).pixels ==
-            renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer)).pixels);
+            cornell.renderer.read_pass_output(fmt::format("radiosity-irradiance-layer{}", layer))
+                .pixels ==
+            cornell.renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer)).pixels);
     }
 }
 
