@@ -19,16 +19,7 @@
 #include <string>
 #include <vector>
 
-int run(int argc, char** argv);
-
-int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "deepgi_ao_dense_study: {}\n", error.what());
-        return 2;
-    }
-}
+namespace {
 
 int run(int argc, char** argv) {
     CLI::App app{
@@ -157,4 +148,10 @@ int run(int argc, char** argv) {
     }
     fmt::print("dense: {} pixels, MAE {:.4f}, bias {:+.4f}\n", count, sum_abs / count, sum / count);
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return deepgi_tools::run_tool("deepgi_ao_dense_study", argc, argv, run);
 }

@@ -241,10 +241,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "deepgi_irradiance_unoccluded_study: {}\n", error.what());
-        return 2;
-    }
+    return deepgi_tools::run_tool("deepgi_irradiance_unoccluded_study", argc, argv, run);
 }

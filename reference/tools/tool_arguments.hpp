@@ -2,7 +2,7 @@
 // the --help layout of deepgi and spiralgen, and deepgi's way with a command
 // line it cannot parse (one line on stderr naming the problem, exit status 2:
 // command_line_errors.hpp). The arguments several tools share are declared
-// here once.
+// here once, and so is every tool's main (run_tool).
 #pragma once
 
 #include "command_line_errors.hpp"
@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <exception>
 #include <system_error>
 #include <filesystem>
 #include <optional>
@@ -21,6 +22,20 @@
 #include <vector>
 
 namespace deepgi_tools {
+
+// A tool's main: runs body(argc, argv) and returns its exit status. What
+// the body throws (an image it cannot read, a dump that does not fit the
+// reference) ends the tool with one line on stderr that starts with its
+// name, and exit status 2.
+template <typename Body>
+int run_tool(const char* name, int argc, char** argv, Body body) {
+    try {
+        return body(argc, argv);
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "{}: {}\n", name, error.what());
+        return spiral_apps::exit_bad_input;
+    }
+}
 
 // Installs the shared --help layout; the app's name starts its error lines.
 inline void use_tool_layout(CLI::App& app) {
