@@ -7,7 +7,7 @@
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
-#include "dump_settings.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -90,8 +90,8 @@ int run(int argc, char** argv) {
     long long count = 0;
     for (int y = layout.guard; y < h - layout.guard; y += stride) {
         for (int x = layout.guard; x < w - layout.guard; x += stride) {
-            const float z = depth0.at(x, y), zt = traced.at(x, y);
-            if (!(z > 0.0f && zt > 0.0f && std::abs(z - zt) <= 1e-3f * zt)) continue;
+            const float z = depth0.at(x, y);
+            if (!deepgi_tools::same_surface(z, traced.at(x, y))) continue;
             const glm::vec3 p = position(x + 0.5f, y + 0.5f, z);
             const glm::vec3 n(normal0.at(x, y, 0), normal0.at(x, y, 1), normal0.at(x, y, 2));
             const float beta = bias + footprint_factor * s * z;

@@ -9,6 +9,7 @@
 // without a sample (confidence 0). First it checks the light model: the dumped
 // direct light against the traced direct light at the same points.
 #include "deepgi/image_io.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -47,8 +48,7 @@ int run(int argc, char** argv) {
     auto compared = [&](int x, int y) {
         // Only where both agree on the surface: silhouette pixels would
         // compare different points.
-        const float a = raster.at(x, y), b = traced.at(x, y);
-        return a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b;
+        return deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y));
     };
     double truth_sum = 0.0, truth_error_sum = 0.0;
     long long count = 0, empty = 0;

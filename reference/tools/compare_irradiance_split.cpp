@@ -10,6 +10,7 @@
 // sum(E - T) / sum T against the whole truth and the visible truth (channels
 // summed). With LABEL, last a Markdown table row for the blurred E.
 #include "deepgi/image_io.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -52,8 +53,7 @@ int run(int argc, char** argv) {
             return 2;
         }
     auto compared = [&](int x, int y) {
-        const float a = raster.at(x, y), b = traced.at(x, y);
-        return a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b;
+        return deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y));
     };
     auto visible = [&](int x, int y, int c) {
         return double(part0.at(x, y, c)) + (layers == 2 ? double(part1.at(x, y, c)) : 0.0);

@@ -19,6 +19,7 @@
 // viewport). A share far above 5% names a band of the view, such as the
 // surfaces level with the eye, which the G-buffer samples edge-on.
 #include "deepgi/image_io.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -102,8 +103,7 @@ int run(int argc, char** argv) {
             for (int x = guard; x < truth.width - guard; ++x) {
                 // Only where both agree on the surface: silhouette pixels
                 // would compare different points.
-                const float a = raster.at(x, y), b = traced.at(x, y);
-                if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
+                if (!deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y))) continue;
                 const double value = comparison.clamp
                                          ? std::clamp(double(estimate.at(x, y)), 0.0, 1.0)
                                          : double(estimate.at(x, y));

@@ -17,6 +17,7 @@
 //     and keeps the shading's own error (the hit texel's lit radiance).
 // Prints one line of key=value pairs.
 #include "deepgi/image_io.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -61,8 +62,7 @@ int run(int argc, char** argv) {
            filtered_bias = 0.0, same_truth = 0.0, same_error = 0.0, same_bias = 0.0;
     for (int y = guard; y < truth.height - guard; ++y)
         for (int x = guard; x < truth.width - guard; ++x) {
-            const float a = raster.at(x, y), b = traced.at(x, y);
-            if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
+            if (!deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y))) continue;
             if (layers.at(x, y, 2) != 1.0f || hit.at(x, y, 2) <= -2.0f) continue;
             ++mirrors;
             const int layer = int(hit.at(x, y, 2));

@@ -38,7 +38,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
-#include "dump_settings.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -243,8 +243,8 @@ int run(int argc, char** argv) {
     std::vector<BufferSums> sums(std::size_t(w) * h);
     for (int y = layout.guard; y < h - layout.guard; ++y)
         for (int x = layout.guard; x < w - layout.guard; ++x) {
-            const float a = layers[0].depth.at(x, y), b = traced.at(x, y);
-            if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
+            const float a = layers[0].depth.at(x, y);
+            if (!deepgi_tools::same_surface(a, traced.at(x, y))) continue;
             const std::size_t i = std::size_t(y) * w + x;
             compared[i] = 1;
             const glm::dvec3 position = glm::dvec3(rays[i]) * double(a);

@@ -27,7 +27,7 @@
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
-#include "dump_settings.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -196,8 +196,8 @@ int run(int argc, char** argv) {
     long long count = 0;
     for (int y = layout.guard; y < h - layout.guard; ++y)
         for (int x = layout.guard; x < w - layout.guard; ++x) {
-            const float a = raster.at(x, y), b = traced.at(x, y);
-            if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
+            const float a = raster.at(x, y);
+            if (!deepgi_tools::same_surface(a, traced.at(x, y))) continue;
             const glm::vec3 n = glm::normalize(
                 to_world * glm::vec3(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)));
             if (glm::dot(n, facing) < min_cos) continue;

@@ -22,7 +22,7 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
-#include "dump_settings.hpp"
+#include "dump_frame.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
@@ -182,10 +182,7 @@ int run(int argc, char** argv) {
                               0.0f));
                 const deepgi::RayScene::Hit hit =
                     rays.intersect_front(eye, direction, camera.near_plane, 1e30f);
-                const float raster = depth.at(x, y);
-                if (!hit.hit || !(raster > 0.0f) ||
-                    std::abs(raster - hit.distance) > 1e-3f * hit.distance)
-                    continue;
+                if (!hit.hit || !deepgi_tools::same_surface(depth.at(x, y), hit.distance)) continue;
                 const std::size_t i = std::size_t(y) * w + x;
                 compared[i] = 1;
                 sums[i] = trace_pixel(rays, classify, eye + direction * hit.distance, hit.normal,
