@@ -83,11 +83,13 @@ public:
                                              {GL_GEOMETRY_SHADER, "gbuffer.geom"},
                                              {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
                                             "#define SINGLE_PASS 1\n");
+        // Delay and predict: no geometry shader; each triangle is drawn once
+        // per layer as an instance, the vertex shader choosing the layer. Their
+        // layer 0 and layer 1 then go through the same vertex stage as peel's
+        // and equal them bit for bit (gbuffer.vert says why a geometry shader
+        // would not).
         prediction_pass_ =
-            loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                  {GL_GEOMETRY_SHADER, "gbuffer.geom"},
-                                  {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
-                                 "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
+            loader.build_program(two_stages, "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
     }
 
     std::string_view name() const override { return "gbuffer"; }
@@ -196,7 +198,7 @@ public:
             clear_gbuffer(layered_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
             glUseProgram(prediction_pass_.get());
-            draw_scene(scene, prediction_pass_.get(), material_bindings);
+            draw_scene(scene, prediction_pass_.get(), material_bindings, prediction_layer + 1);
             copy_depth_layer(prediction_layer, layer0_depth.written());
         } else {
             // Previous / reproject: compare against the previous frame's layer 0.
@@ -255,7 +257,7 @@ private:
     gl::Program peel_first_layer_;
     gl::Program peel_second_layer_;
     gl::Program single_pass_;      // with the geometry shader
-    gl::Program prediction_pass_;  // the same with a third invocation: the next frame's layer 0
+    gl::Program prediction_pass_;  // three instances, the third the next frame's layer 0
     gl::Framebuffer first_layer_framebuffer_;
     gl::Framebuffer second_layer_framebuffer_;
     gl::Framebuffer layered_framebuffer_;
