@@ -55,8 +55,8 @@ Comparison compare(const FloatImage& actual, const FloatImage& expected, float r
 // Layers 0 and 1 of `generator` equal peel's bit for bit at every frame from
 // `first_exact` on: depth, normals and albedo, presence included. (Delay and
 // predict draw their layers through the same vertex stage as peel, with no
-// geometry shader, for this: gbuffer.vert.) It returns how many layer-1 pixels `previous` got wrong on those frames, the
-// evidence that the path moves enough for the comparison to mean something.
+// geometry shader, for this: gbuffer.vert.) It returns how many layer-1 pixels `previous` got wrong
+// on those frames, the evidence that the path moves enough for the comparison to mean something.
 std::size_t check_against_peel(const Scene& scene, Generator generator,
                                const std::vector<Camera>& cameras, int first_exact) {
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
