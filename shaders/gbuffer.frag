@@ -3,8 +3,8 @@
 //   none               peel, layer 0: nearest surface, no test
 //   PEEL_SECOND_LAYER  peel, layer 1 against this frame's layer-0 depth
 //   SINGLE_PASS        previous / reproject: gl_Layer says which layer
-//   + PREDICTION_LAYER delay / predict: also layer 2, depth only, placed by the
-//                      next frame's camera (gbuffer.geom)
+//   PREDICTION_LAYER   delay / predict: gl_Layer says which layer; layer 2 is
+//                      depth only, placed by the next frame's camera (gbuffer.vert)
 #include "frame_constants.glsl"
 #include "gbuffer_encoding.glsl"
 
@@ -16,9 +16,6 @@ in GBufferVertex {
   float previous_camera_depth;
   vec4 current_clip;
   vec4 previous_clip;
-#if defined(PREDICTION_LAYER)
-  vec4 next_clip;
-#endif
 } fragment_in;
 
 layout(location = DEEPGI_GBUFFER_OUTPUT_NORMAL) out vec2 out_normal;

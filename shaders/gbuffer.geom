@@ -1,13 +1,8 @@
 #version 450 core
-// Single-pass generators: one invocation per layer sends each triangle to both
+// Previous and reproject: one invocation per layer sends each triangle to both
 // array layers; the fragment shader applies the minimum separation on layer 1.
-// PREDICTION_LAYER (delay, predict): a third invocation sends it to layer 2
-// placed by the next frame's camera, the depth the next frame peels against.
-#if defined(PREDICTION_LAYER)
-layout(triangles, invocations = 3) in;
-#else
+// (Delay and predict choose their layers in gbuffer.vert instead.)
 layout(triangles, invocations = 2) in;
-#endif
 layout(triangle_strip, max_vertices = 3) out;
 
 in GBufferVertex {
@@ -18,9 +13,6 @@ in GBufferVertex {
   float previous_camera_depth;
   vec4 current_clip;
   vec4 previous_clip;
-#if defined(PREDICTION_LAYER)
-  vec4 next_clip;
-#endif
 } vertex_in[];
 
 out GBufferVertex {
@@ -31,9 +23,6 @@ out GBufferVertex {
   float previous_camera_depth;
   vec4 current_clip;
   vec4 previous_clip;
-#if defined(PREDICTION_LAYER)
-  vec4 next_clip;
-#endif
 } vertex_out;
 
 void main() {
@@ -46,10 +35,6 @@ void main() {
     vertex_out.current_clip = vertex_in[i].current_clip;
     vertex_out.previous_clip = vertex_in[i].previous_clip;
     gl_Position = gl_in[i].gl_Position;
-#if defined(PREDICTION_LAYER)
-    vertex_out.next_clip = vertex_in[i].next_clip;
-    if (gl_InvocationID == 2) gl_Position = vertex_in[i].next_clip;
-#endif
     gl_Layer = gl_InvocationID;
     EmitVertex();
   }

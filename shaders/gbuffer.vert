@@ -1,4 +1,16 @@
 #version 450 core
+// Variants (defines from gbuffer_pass.cpp):
+//   none              peel (and, with a geometry shader, previous / reproject)
+//   PREDICTION_LAYER  delay / predict: drawn with 3 instances, instance i into
+//                     array layer i, layer 2 placed by the next frame's camera
+#if defined(PREDICTION_LAYER)
+// The layer is chosen here, not in a geometry shader, so that every layer's
+// positions go through the same vertex stage as peel's: on llvmpipe a
+// geometry shader moves the viewport transform to another code path, which
+// rounds window x and y differently and so the interpolated depth (docs/deepgi.md,
+// "Generators").
+#extension GL_ARB_shader_viewport_layer_array : require
+#endif
 #include "frame_constants.glsl"
 
 layout(location = DEEPGI_ATTRIBUTE_POSITION) in vec3 position;
@@ -14,9 +26,6 @@ out GBufferVertex {
   float previous_camera_depth;  // linear, previous frame's camera (reproject)
   vec4 current_clip;
   vec4 previous_clip;
-#if defined(PREDICTION_LAYER)
-  vec4 next_clip;  // the next frame's camera (delay, predict): the third layer's position
-#endif
 } vertex_out;
 
 void main() {
@@ -30,8 +39,11 @@ void main() {
   vertex_out.previous_camera_depth = -(frame.previous_view * world).z;
   vertex_out.current_clip = frame.projection * camera_position;
   vertex_out.previous_clip = frame.previous_view_projection * world;
-#if defined(PREDICTION_LAYER)
-  vertex_out.next_clip = frame.next_view_projection * world;
-#endif
   gl_Position = vertex_out.current_clip;
+#if defined(PREDICTION_LAYER)
+  gl_Layer = gl_InstanceID;
+  // The third layer: the next frame's camera, the depth the next frame peels against.
+  // The same expression as current_clip's, with the next frame's matrices.
+  if (gl_InstanceID == 2) gl_Position = frame.next_projection * (frame.next_view * world);
+#endif
 }

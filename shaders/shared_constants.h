@@ -84,10 +84,13 @@ struct FrameConstants {
   int environment_term;
   int reflection_term;
 
-  // The next frame's guard-banded view-projection: the delay generator's
+  // The next frame's view and guard-banded projection: the delay generator's
   // given camera, the predict generator's extrapolated one (this frame's
-  // camera for the other generators, which do not read it).
-  mat4 next_view_projection;
+  // camera for the other generators, which do not read them). Kept apart, as
+  // view and projection are, so that the third layer's positions are computed
+  // as the next frame's layer 0 will be, to the bit.
+  mat4 next_view;
+  mat4 next_projection;
 };
 
 #endif

@@ -29,8 +29,9 @@ static_assert(offsetof(FrameConstants, temporal_angle) == 5 * 64 + 9 * 16 + 12);
 static_assert(offsetof(FrameConstants, temporal_sample) == 5 * 64 + 10 * 16);
 static_assert(offsetof(FrameConstants, ao_term) == 5 * 64 + 11 * 16);
 static_assert(offsetof(FrameConstants, reflection_term) == 5 * 64 + 11 * 16 + 12);
-static_assert(offsetof(FrameConstants, next_view_projection) == 5 * 64 + 12 * 16);
-static_assert(sizeof(FrameConstants) == 6 * 64 + 12 * 16,
+static_assert(offsetof(FrameConstants, next_view) == 5 * 64 + 12 * 16);
+static_assert(offsetof(FrameConstants, next_projection) == 6 * 64 + 12 * 16);
+static_assert(sizeof(FrameConstants) == 7 * 64 + 12 * 16,
               "FrameConstants must keep the std140 layout of shared_constants.h");
 }  // namespace deepgi::shader_shared
 

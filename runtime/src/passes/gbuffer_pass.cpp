@@ -5,10 +5,13 @@
 // next; or, for delay and predict, the third layer: this frame's geometry seen
 // by the next frame's camera, i.e. the next frame's layer 0 when the camera
 // arrives where expected (the paper's Delay and Predict variants).
+#include "deepgi/errors.hpp"
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
+
+#include <cstring>
 
 namespace deepgi {
 
@@ -36,6 +39,20 @@ struct GBufferTargets {
 };
 
 constexpr int prediction_layer = 2;
+
+// Delay and predict write gl_Layer from the vertex shader (gbuffer.vert).
+constexpr const char* vertex_layer_extension = "GL_ARB_shader_viewport_layer_array";
+
+bool has_gl_extension(const char* name) {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto* extension =
+            reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (extension != nullptr && std::strcmp(extension, name) == 0) return true;
+    }
+    return false;
+}
 
 int gbuffer_layers(Generator generator) {
     return generator_predicts_next_frame(generator) ? prediction_layer + 1 : DEEPGI_LAYER_COUNT;
@@ -83,11 +100,15 @@ public:
                                              {GL_GEOMETRY_SHADER, "gbuffer.geom"},
                                              {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
                                             "#define SINGLE_PASS 1\n");
-        prediction_pass_ =
-            loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                  {GL_GEOMETRY_SHADER, "gbuffer.geom"},
-                                  {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
-                                 "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
+        // Delay and predict: no geometry shader; each triangle is drawn once
+        // per layer as an instance, the vertex shader choosing the layer. Their
+        // layer 0 and layer 1 then go through the same vertex stage as peel's
+        // and equal them bit for bit (gbuffer.vert says why a geometry shader
+        // would not). Without the extension that lets the vertex shader set
+        // the layer, only these two generators are refused, when asked for.
+        if (has_gl_extension(vertex_layer_extension))
+            prediction_pass_ = loader.build_program(
+                two_stages, "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
     }
 
     std::string_view name() const override { return "gbuffer"; }
@@ -169,8 +190,9 @@ public:
         const SceneGpu& scene = *frame.scene_gpu;
         for (const gl::Program* program :
              {&peel_first_layer_, &peel_second_layer_, &single_pass_, &prediction_pass_})
-            glProgramUniform1f(program->get(), DEEPGI_UNIFORM_MIRROR_ROUGHNESS,
-                               frame.settings->mirror_roughness);
+            if (program->get() != 0)
+                glProgramUniform1f(program->get(), DEEPGI_UNIFORM_MIRROR_ROUGHNESS,
+                                   frame.settings->mirror_roughness);
 
         if (frame.settings->generator == Generator::peel) {
             clear_gbuffer(first_layer_framebuffer_, 4);
@@ -190,13 +212,17 @@ public:
             glUseProgram(peel_second_layer_.get());
             draw_scene(scene, peel_second_layer_.get(), material_bindings);
         } else if (generator_predicts_next_frame(frame.settings->generator)) {
+            if (prediction_pass_.get() == 0)
+                throw GraphicsError(fmt::format("--generator {} needs {}, which this driver lacks",
+                                                to_string(frame.settings->generator),
+                                                vertex_layer_extension));
             // Delay / predict: layer 1 against the prediction the last frame
             // made of this frame's layer 0; this frame predicts the next's.
             glBindTextureUnit(reference_depth_binding, layer0_depth.previous());
             clear_gbuffer(layered_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
             glUseProgram(prediction_pass_.get());
-            draw_scene(scene, prediction_pass_.get(), material_bindings);
+            draw_scene(scene, prediction_pass_.get(), material_bindings, prediction_layer + 1);
             copy_depth_layer(prediction_layer, layer0_depth.written());
         } else {
             // Previous / reproject: compare against the previous frame's layer 0.
@@ -255,7 +281,7 @@ private:
     gl::Program peel_first_layer_;
     gl::Program peel_second_layer_;
     gl::Program single_pass_;      // with the geometry shader
-    gl::Program prediction_pass_;  // the same with a third invocation: the next frame's layer 0
+    gl::Program prediction_pass_;  // three instances, the third the next frame's layer 0
     gl::Framebuffer first_layer_framebuffer_;
     gl::Framebuffer second_layer_framebuffer_;
     gl::Framebuffer layered_framebuffer_;

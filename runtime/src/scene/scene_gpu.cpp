@@ -64,10 +64,14 @@ SceneGpu upload_scene(const Scene& scene) {
     return gpu;
 }
 
-void draw_batch(const DrawBatch& batch) {
-    glDrawElements(
-        GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT,
-        reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) * sizeof(std::uint32_t)));
+void draw_batch(const DrawBatch& batch, int instances) {
+    const void* first =
+        reinterpret_cast<const void*>(std::uintptr_t(batch.first_index) * sizeof(std::uint32_t));
+    if (instances == 1)
+        glDrawElements(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT, first);
+    else
+        glDrawElementsInstanced(GL_TRIANGLES, GLsizei(batch.index_count), GL_UNSIGNED_INT, first,
+                                instances);
 }
 
 namespace {
@@ -88,7 +92,7 @@ void set_base_colour(const SceneGpu& scene, std::size_t m, GLuint program, GLuin
 }  // namespace
 
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
-                MaterialTextureBindings bindings) {
+                MaterialTextureBindings bindings, int instances) {
     glBindVertexArray(scene.vertex_array.get());
     for (const auto& batch : scene.batches) {
         if (program_for_materials != 0) {
@@ -110,7 +114,7 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
             glProgramUniform2f(program_for_materials, DEEPGI_UNIFORM_MATERIAL_SURFACE,
                                material.roughness, material.metallic);
         }
-        draw_batch(batch);
+        draw_batch(batch, instances);
     }
     // Other passes read their textures with the textures' own parameters.
     if (program_for_materials != 0) {

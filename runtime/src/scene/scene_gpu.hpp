@@ -28,8 +28,10 @@ struct MaterialTextureBindings {
 
 // Draws every batch; when `program_for_materials` is non-zero, sets its
 // material uniforms first and binds the material's textures at `bindings`.
+// `instances` > 1 draws each batch that many times in one instanced call
+// (gl_InstanceID), e.g. one per array layer chosen in the vertex shader.
 void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
-                MaterialTextureBindings bindings);
+                MaterialTextureBindings bindings, int instances = 1);
 
 // Depth-only drawing that honours glTF alpha masks: opaque batches with
 // `opaque_program`, then alpha-masked ones with `masked_program`, whose
@@ -39,7 +41,8 @@ void draw_scene(const SceneGpu& scene, GLuint program_for_materials,
 void draw_scene_depth(const SceneGpu& scene, GLuint opaque_program, GLuint masked_program,
                       GLuint base_colour_binding);
 
-// Draws one batch's triangles; the caller binds the vertex array and sets uniforms.
-void draw_batch(const DrawBatch& batch);
+// Draws one batch's triangles (`instances` times, instanced, when more than
+// one); the caller binds the vertex array and sets uniforms.
+void draw_batch(const DrawBatch& batch, int instances = 1);
 
 }  // namespace deepgi

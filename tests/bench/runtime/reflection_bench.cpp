@@ -2,10 +2,12 @@
 //
 // Per scene (default gallery, the built-in scene with a mirror floor), one
 // renderer per layer count (1, 2) and step count (--steps, default 16, 32,
-// 64), plus the single-pass generators (previous, reproject) at the default
-// reflection settings for the G-buffer milliseconds of each generator; peel's
-// are those of the 2-layer, 32-step renderer. All take turns frame by frame
-// (bench_harness.hpp); every pass is timed with a CPU clock around glFinish
+// 64), plus the single-pass generators (previous, reproject, predict, delay)
+// at the default reflection settings for the G-buffer milliseconds of each
+// generator; peel's are those of the 2-layer, 32-step renderer. The camera
+// stands still, so delay's next camera is this one and predict's
+// extrapolation is exact; what a generator costs does not depend on that. All take turns frame by
+// frame (bench_harness.hpp); every pass is timed with a CPU clock around glFinish
 // (--timing gpu for GL timer queries on a GPU); medians of --frames frames
 // after --warmup frames under the scene's default camera.
 #include "bench_harness.hpp"
@@ -15,7 +17,16 @@
 
 #include <fmt/format.h>
 
+#include <iterator>
 #include <memory>
+
+namespace {
+
+constexpr deepgi::Generator single_pass[] = {deepgi::Generator::previous,
+                                             deepgi::Generator::reproject,
+                                             deepgi::Generator::predict, deepgi::Generator::delay};
+
+}  // namespace
 
 int main(int argc, char** argv) {
     deepgi::bench::Options options;
@@ -62,8 +73,7 @@ int main(int argc, char** argv) {
                     add(s);
                 }
             }
-            for (deepgi::Generator generator :
-                 {deepgi::Generator::previous, deepgi::Generator::reproject}) {
+            for (deepgi::Generator generator : single_pass) {
                 deepgi::RenderSettings s = settings;
                 s.generator = generator;
                 add(s);
@@ -87,12 +97,12 @@ int main(int argc, char** argv) {
             generator_rows.push_back(fmt::format("| {} | peel | {:.2f} | {:.1f} |", name,
                                                  medians[peel].at("gbuffer"),
                                                  medians[peel].at("total")));
-            generator_rows.push_back(fmt::format("| {} | previous | {:.2f} | {:.1f} |", name,
-                                                 medians[generators].at("gbuffer"),
-                                                 medians[generators].at("total")));
-            generator_rows.push_back(fmt::format("| {} | reproject | {:.2f} | {:.1f} |", name,
-                                                 medians[generators + 1].at("gbuffer"),
-                                                 medians[generators + 1].at("total")));
+            for (std::size_t g = 0; g < std::size(single_pass); ++g) {
+                const auto& m = medians[generators + g];
+                generator_rows.push_back(fmt::format("| {} | {} | {:.2f} | {:.1f} |", name,
+                                                     deepgi::to_string(single_pass[g]),
+                                                     m.at("gbuffer"), m.at("total")));
+            }
         }
         fmt::print(
             "\nG-buffer per generator (peel: the 2-layer renderer at the default step "
