@@ -17,8 +17,13 @@
 # docs/results.md shows, which `deepgi report` runs only when asked.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build}
-[ $# -gt 0 ] && shift
+# The build directory is optional: a first argument that is a flag (such as
+# --quick) leaves the default.
+build=$root/build
+case "${1:-}" in
+  ""|-*) ;;
+  *) build=$1; shift ;;
+esac
 quick=0
 if [ "${1:-}" = "--quick" ]; then quick=1; shift; fi
 cmake --build "$build" --target deepgi

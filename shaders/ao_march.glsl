@@ -37,7 +37,7 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
   // Any tangent frame will do: the rotation randomises the pattern anyway.
   vec3 tangent = normalize(cross(normal, abs(normal.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
   vec3 bitangent = cross(normal, tangent);
-  float offset = fract(float(avalanche32(pixel_rotation_hash(pixel) ^ 0x68e31da4u) >> 8u) * (1.0 / 16777216.0) + frame.temporal_sample.y);
+  float offset = fract(float(avalanche32(pixel_rotation_hash(pixel, uint(frame.rotation_seed)) ^ 0x68e31da4u) >> 8u) * (1.0 / 16777216.0) + frame.temporal_sample.y);
   float step_length = radius / float(DEEPGI_AO_MARCH_STEPS);
   float occlusion = 0.0;
   for (int i = 0; i < DEEPGI_AO_MARCH_RAYS; ++i) {

@@ -64,6 +64,6 @@ bool slice_sample(AoSlice slice, ivec2 pixel, float side, int k, float jitter, f
 }
 
 float slice_jitter(ivec2 pixel) {
-  return fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel)) ^ 0x2c1b3c6du) >> 8u) * (1.0 / 16777216.0) +
+  return fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel), uint(frame.rotation_seed)) ^ 0x2c1b3c6du) >> 8u) * (1.0 / 16777216.0) +
                frame.temporal_sample.y);
 }

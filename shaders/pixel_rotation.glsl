@@ -13,17 +13,19 @@
 #define DEEPGI_SHARED_FUNCTION
 #include "pixel_rotation_hash.h"
 
-uint pixel_rotation_hash(uvec2 pixel) { return pixel_rotation_hash_xy(pixel.x, pixel.y); }
+// seed: FrameConstants.rotation_seed (0: the shipped field); the passes pass
+// it explicitly so this file needs no frame block.
+uint pixel_rotation_hash(uvec2 pixel, uint seed) { return pixel_rotation_hash_xy(pixel.x, pixel.y, seed); }
 
 // phi in [0, 2*pi), from the top 24 bits so the conversion to float is exact.
-float pixel_rotation_angle(uvec2 pixel) {
-  return float(pixel_rotation_hash(pixel) >> 8u) * (1.0 / 16777216.0) * two_pi;
+float pixel_rotation_angle(uvec2 pixel, uint seed) {
+  return float(pixel_rotation_hash(pixel, seed) >> 8u) * (1.0 / 16777216.0) * two_pi;
 }
 
 // One 2x2 matrix per pixel; each tap's offset is rotated by it instead of
 // evaluating cos and sin per tap.
-mat2 pixel_rotation(uvec2 pixel) {
-  float phi = pixel_rotation_angle(pixel);
+mat2 pixel_rotation(uvec2 pixel, uint seed) {
+  float phi = pixel_rotation_angle(pixel, seed);
   float c = cos(phi);
   float s = sin(phi);
   return mat2(c, s, -s, c);

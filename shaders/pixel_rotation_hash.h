@@ -18,9 +18,13 @@ DEEPGI_SHARED_FUNCTION uint avalanche32(uint h) {
 }
 
 // Distinct x in one row always give distinct hashes (xor with a fixed value,
-// then a bijection).
-DEEPGI_SHARED_FUNCTION uint pixel_rotation_hash_xy(uint x, uint y) {
-  return avalanche32(x ^ avalanche32(y + 0x9e3779b9u));
+// then a bijection). The seed (FrameConstants.rotation_seed) picks another
+// field of angles: its own avalanche joins the xor, and avalanche32(0) = 0,
+// so seed 0 is the shipped field bit for bit. Seed s reads the seed-0 field
+// at column x ^ avalanche32(s), far outside any frame for almost every s, so
+// every pixel gets an angle unrelated to its seed-0 one.
+DEEPGI_SHARED_FUNCTION uint pixel_rotation_hash_xy(uint x, uint y, uint seed) {
+  return avalanche32(x ^ avalanche32(y + 0x9e3779b9u) ^ avalanche32(seed));
 }
 
 #endif

@@ -94,7 +94,7 @@ void main() {
   float radius_squared = radius * radius;
   // The per-frame angle (frame.cpp) follows a sequence that never repeats,
   // which the temporal filter averages over.
-  float phi = pixel_rotation_angle(uvec2(pixel)) + frame.temporal_angle;
+  float phi = pixel_rotation_angle(uvec2(pixel), uint(frame.rotation_seed)) + frame.temporal_angle;
   mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);
 

@@ -256,7 +256,7 @@ void main() {
   vec3 origin = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = decode_normal(texelFetch(gbuffer_normal, ivec3(pixel, 0), 0).xy);
   vec3 direction = normalize(reflect(normalize(origin), normal));
-  float jitter = fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel)) ^ 0x3c6ef372u) >> 8u) * (1.0 / 16777216.0) +
+  float jitter = fract(float(avalanche32(pixel_rotation_hash(uvec2(pixel), uint(frame.rotation_seed)) ^ 0x3c6ef372u) >> 8u) * (1.0 / 16777216.0) +
                        frame.temporal_sample.y);
 
   ivec2 hit_pixel;

@@ -111,7 +111,7 @@ void main() {
 
   // Pixels per metre at this depth: P11 * height / 2 / depth, P11 = 1 / ray_scale.y.
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
-  mat2 rotation = pixel_rotation(uvec2(pixel));
+  mat2 rotation = pixel_rotation(uvec2(pixel), uint(frame.rotation_seed));
   // This frame's angle of the temporal sequence (frame.cpp), which ao_temporal.frag averages over.
   rotation *= mat2(cos(frame.temporal_angle), sin(frame.temporal_angle), -sin(frame.temporal_angle), cos(frame.temporal_angle));
   // Solid-angle and thick-spiral threshold: the G-buffer samples a surface

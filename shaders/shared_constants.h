@@ -59,7 +59,7 @@ struct FrameConstants {
   float min_separation;        // m, layer 1 behind layer 0
   float exposure;              // the setting; -1: auto (frame_statistics.comp measures it)
   float shadow_normal_offset;  // m along the normal before the shadow lookup
-  float unused0;               // keeps the row whole (std140)
+  int rotation_seed;           // picks the per-pixel rotation field (pixel_rotation_hash.h); 0: shipped
 
   int guard_band;       // px on every side
   int viewport_width;   // px

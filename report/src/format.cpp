@@ -18,8 +18,10 @@ const std::vector<std::string>& timed_passes() {
 const std::vector<std::string>& value_columns() {
     static const std::vector<std::string> columns = [] {
         // ao_slices and ao_steps: the slice estimators' cost (empty for the others).
-        std::vector<std::string> names = {"discrepancy", "turns", "temporal_offset", "ao_slices",
-                                          "ao_steps"};
+        // temporal_offset and rotation_seed: the repeat's realisation of the
+        // per-frame and the per-pixel rotation (repeat_offset, repeat_rotation_seed).
+        std::vector<std::string> names = {"discrepancy",   "turns",     "temporal_offset",
+                                          "rotation_seed", "ao_slices", "ao_steps"};
         for (const auto& pass : timed_passes()) names.push_back(pass + "_ms");
         for (const char* name : {
                  "conv_raw_mae",

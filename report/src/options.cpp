@@ -86,4 +86,9 @@ int repeat_offset(const ReportOptions& options, int repeat) {
     return std::max(9, 1 + options.warmup + options.frames) * repeat;
 }
 
+int repeat_rotation_seed(int repeat) {
+    // Repeat 0 keeps the shipped field, so its rows are the plain renderer's.
+    return repeat;
+}
+
 }  // namespace deepgi::report

@@ -168,6 +168,7 @@ struct Measured {
     double discrepancy = 0.0;
     double turns = 0.0;
     int temporal_offset = 0;              // the repeat's start in the temporal sequence
+    int rotation_seed = 0;                // the repeat's per-pixel rotation field
     std::optional<SliceCost> slice_cost;  // gtao and bitmask
     bool gathers_taps = true;             // false: no converged AO to compare with
     ErrorStats conv_raw, conv_blur, ref_raw, ref_blur, rad_raw, rad_blur;
@@ -194,6 +195,7 @@ Row make_row(Row row, const Measured& m) {
     add("discrepancy", m.discrepancy);
     add("turns", m.turns);
     add("temporal_offset", double(m.temporal_offset));
+    add("rotation_seed", double(m.rotation_seed));
     add("ao_slices", m.slice_cost ? std::optional<double>(m.slice_cost->slices) : std::nullopt);
     add("ao_steps", m.slice_cost ? std::optional<double>(m.slice_cost->steps) : std::nullopt);
     for (const auto& pass : timed_passes()) {
@@ -288,7 +290,8 @@ void measure_scene_rows(const SceneRowsSetup& setup, const ReportOptions& option
         // The slice estimators run at each of their costs (a curve), the
         // others at one: every cost at every layer count.
         const bool marches_slices = ao_method_marches_slices(method);
-        // Each of those is rendered options.repeats times (repeat_offset).
+        // Each of those is rendered options.repeats times (repeat_offset,
+        // repeat_rotation_seed).
         struct CostAndLayers {
             SliceCost cost;
             int layers = 0;
@@ -345,6 +348,11 @@ void measure_scene_rows(const SceneRowsSetup& setup, const ReportOptions& option
                     const int temporal_offset = repeat_offset(options, repeat);
                     RenderSettings repeat_settings = with_layers(layers, cost);
                     repeat_settings.temporal_offset = temporal_offset;
+                    // And another field of per-pixel angles: with the temporal
+                    // offset alone every repeat shares the hashed field, and a
+                    // difference from how a pattern meets that one field would
+                    // repeat exactly, unseen by the spread (docs/report.md).
+                    repeat_settings.rotation_seed = repeat_rotation_seed(repeat);
                     renderer.set_settings(repeat_settings);
                     // Errors from the first frame after a cut: no history in it.
                     renderer.render(camera, CameraMotion::cut);
@@ -411,6 +419,7 @@ void measure_scene_rows(const SceneRowsSetup& setup, const ReportOptions& option
                         .discrepancy = discrepancy,
                         .turns = turns.value(),
                         .temporal_offset = temporal_offset,
+                        .rotation_seed = repeat_settings.rotation_seed,
                         .slice_cost =
                             marches_slices ? std::optional<SliceCost>(cost) : std::nullopt,
                         .gathers_taps = gathers_taps,

@@ -209,6 +209,7 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     constants.temporal_frame = int(std::min<std::uint32_t>(state.temporal_frame, INT32_MAX));
     constants.temporal_angle = sample.x * 6.2831853f;
     constants.temporal_sample = sample;
+    constants.rotation_seed = settings.rotation_seed;
     constants.next_view = camera_view_matrix(next);
     constants.next_projection = guard_band_projection(next, settings);
     return constants;

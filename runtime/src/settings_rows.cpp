@@ -39,7 +39,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 31> numeric_table = {{
+const std::array<NumericSetting, 32> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -116,6 +116,19 @@ const std::array<NumericSetting, 31> numeric_table = {{
      .slider_min = 0.0f,
      .slider_max = 64.0f,
      DEEPGI_INT_FIELD(temporal_offset)},
+    {.name = "rotation-seed",
+     .label = "rotation seed",
+     .group = "frame",
+     .owner = "frame",
+     .help = "Seed of the per-pixel hashed rotation of every gather (0: the shipped field). "
+             "Another value gives every pixel another angle and march or slice offset; the "
+             "report repeats its rows with it beside the temporal offset",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = float(limits::max_rotation_seed),
+     .slider_min = 0.0f,
+     .slider_max = 64.0f,
+     DEEPGI_INT_FIELD(rotation_seed)},
     {.name = "ao-radius",
      .label = "radius (m)",
      .group = "ao",

@@ -271,8 +271,8 @@ def estimators_section(plt, directory, rows, info, add):
         else:
             findings = equal_cost_findings(series, spread)
             add(f"- **Spread:** {spread:.4f}, the largest range of one point's MAE over the "
-                "run's repeats (each repeat starts the temporal sequence elsewhere; "
-                "docs/report.md, \"Noise\").")
+                "run's repeats (each repeat starts the temporal sequence elsewhere and "
+                "seeds the per-pixel rotation anew; docs/report.md, \"Noise\").")
             add("- **At equal cost** (each curve read at the others' measured costs, linearly "
                 "in log ms; only where two or more curves reach): " +
                 ("; ".join(findings) if findings else "no two curves cover a common cost") + ".")

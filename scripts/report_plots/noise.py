@@ -1,8 +1,9 @@
 """The run's own noise, and the one rule by which the summary ranks anything.
 
 `deepgi report --repeats R` renders every row R times, each repeat with the
-temporal sequence started at another point (another realisation of every
-frame's rotation). For a quantity the summary compares (a column averaged
+temporal sequence started at another point and the per-pixel rotation hash
+seeded with the repeat's index (another realisation of every pixel's
+rotation, the per-pixel field included). For a quantity the summary compares (a column averaged
 over scenes, layers, tap counts ...), `per_repeat` gives its value in each
 repeat; the quantity's run-to-run spread is the range (largest minus
 smallest) of those values.

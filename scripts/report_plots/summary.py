@@ -94,6 +94,8 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
     offsets = sorted({int(r["temporal_offset"]) for r in rows
                       if r.get("temporal_offset") is not None})
     repeats = max(1, len(offsets))
+    seeds = sorted({int(r["rotation_seed"]) for r in rows
+                    if r.get("rotation_seed") is not None})
     study = [n for n in STUDY_TAPS if n in taps]
     top = layers[-1]
     first = rows[0]["ao_method"]
@@ -111,7 +113,9 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
         f"optimal tau at {info.get('converged_taps')} taps, timing: {info.get('timing')}, "
         f"median of {info.get('frames')} frames. Scenes: {', '.join(scenes)}. "
         f"Every row rendered {repeats} time{'s' if repeats > 1 else ''} (temporal offsets "
-        f"{', '.join(str(o) for o in offsets) or 'not recorded'}). "
+        f"{', '.join(str(o) for o in offsets) or 'not recorded'}"
+        + (f"; rotation seeds {', '.join(str(r) for r in seeds)}" if seeds else "")
+        + "). "
         f"Run time {info.get('seconds', 0):.0f} s.\n")
     add(f"Errors are mean absolute errors of ambient visibility averaged over the scenes and "
         "repeats (the raw solid-angle AV is signed, as the estimator gives it; the blurred AV is "
@@ -123,7 +127,11 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
         "with.\n")
     if repeats > 1:
         add("The run measures its own noise: each repeat starts the temporal sequence "
-            "elsewhere, which turns every pixel's rotation to another realisation. The "
+            "elsewhere" + (" and seeds the per-pixel rotation hash anew, so every pixel's "
+                           "rotation and step offsets are another realisation, the field of "
+                           "per-pixel angles included" if len(seeds) > 1 else
+                           ", which adds one angle to every pixel's rotation (the per-pixel "
+                           "field of hashed angles is the same in every repeat)") + ". The "
             "'spread' column is the largest run-to-run range (largest minus smallest repeat) "
             "of any pattern's value at that N. Two values differ only when their means differ "
             "by more than the larger of their two spreads; anything less is called within the "

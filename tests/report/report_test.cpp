@@ -204,6 +204,10 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         // repeat_offset: 9 frames per repeat at --warmup 0 --frames 1.
         CHECK((offset == 0 || offset == 9));
         CHECK(report::repeat_offset(options, offset / 9) == offset);
+        // The repeat's per-pixel rotation field: repeat 0 the shipped one.
+        CHECK(std::stoi(fields[column.at("rotation_seed")]) ==
+              report::repeat_rotation_seed(offset / 9));
+        CHECK(report::repeat_rotation_seed(offset / 9) == offset / 9);
         repeat_error[combination][offset] = std::stod(fields[column.at("ref_raw_mae")]);
         const int taps = std::stoi(fields[2]);
         // The march gathers no taps, so it has no converged AO to compare with.

@@ -258,12 +258,12 @@ std::uint32_t avalanche32(std::uint32_t x) {
     return shader::avalanche32(x);
 }
 
-std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y) {
-    return shader::pixel_rotation_hash_xy(x, y);
+std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y, std::uint32_t seed) {
+    return shader::pixel_rotation_hash_xy(x, y, seed);
 }
 
-float pixel_rotation_angle(std::uint32_t x, std::uint32_t y) {
-    return float(pixel_rotation_hash(x, y) >> 8) * (1.0f / 16777216.0f) * 6.2831855f;
+float pixel_rotation_angle(std::uint32_t x, std::uint32_t y, std::uint32_t seed) {
+    return float(pixel_rotation_hash(x, y, seed) >> 8) * (1.0f / 16777216.0f) * 6.2831855f;
 }
 
 glm::vec2 camera_ray_scale(const Camera& camera, const RenderSettings& settings) {

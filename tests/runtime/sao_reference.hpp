@@ -26,9 +26,10 @@
 
 namespace deepgi::test {
 
-// The per-pixel rotation of pixel_rotation.glsl, in 32-bit unsigned arithmetic.
-std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y);
-float pixel_rotation_angle(std::uint32_t x, std::uint32_t y);
+// The per-pixel rotation of pixel_rotation.glsl, in 32-bit unsigned arithmetic;
+// seed is the rotation-seed setting (0: the shipped field the references use).
+std::uint32_t pixel_rotation_hash(std::uint32_t x, std::uint32_t y, std::uint32_t seed = 0);
+float pixel_rotation_angle(std::uint32_t x, std::uint32_t y, std::uint32_t seed = 0);
 // The per-pixel salted hashes' mixer (pixel_rotation_hash.h), for the step
 // offsets and jitters the shaders derive from the pixel hash.
 std::uint32_t avalanche32(std::uint32_t x);

@@ -152,7 +152,7 @@ struct ReportInfo {
     // The configuration of the per-scene images, which every AO method runs.
     std::string image_pattern;
     int image_taps = 0;
-    int repeats = 1;  // renders of every row, each with its own temporal offset
+    int repeats = 1;  // renders of every row, each with its own temporal offset and rotation seed
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
@@ -194,7 +194,9 @@ struct ReportOptions {
     int image_taps = 11;
     // Every row is rendered this many times, repeat r with the temporal
     // sequence started at repeat_offset(options, r) (RenderSettings::
-    // temporal_offset): another realisation of the per-frame rotation. The
+    // temporal_offset) and the per-pixel rotation seeded with
+    // repeat_rotation_seed(r): another realisation of both the per-frame and
+    // the per-pixel rotation. The
     // spread between repeats is the run's own noise, which the summary
     // compares every difference it reports with (docs/report.md).
     int repeats = 2;
@@ -225,6 +227,10 @@ void validate(const ReportOptions& options);
 // sequence, each as long as the frames a row renders after its cut
 // (max(9, 1 + warmup + frames)), so no two repeats share a frame's sample.
 int repeat_offset(const ReportOptions& options, int repeat);
+
+// The per-pixel rotation seed of repeat r (RenderSettings::rotation_seed): r,
+// so repeat 0 renders the shipped field and every other repeat its own.
+int repeat_rotation_seed(int repeat);
 
 struct ReportResult {
     std::vector<Row> rows;

@@ -139,6 +139,7 @@ inline constexpr int max_reflection_steps = 1024;
 // temporal-offset: every value, and the next one past it, is exact in the
 // float the settings rows carry.
 inline constexpr int max_temporal_offset = 1 << 20;
+inline constexpr int max_rotation_seed = 1 << 20;
 }  // namespace limits
 
 // The bias each estimator was derived or tuned with. Solid-angle needs none:
@@ -281,6 +282,11 @@ struct RenderSettings {
     // 0 is the shipped sequence; the report repeats rows with other offsets
     // to measure its run-to-run spread (docs/report.md).
     int temporal_offset = 0;
+    // Picks the field of per-pixel hashed angles every gather turns its
+    // pattern by (pixel_rotation_hash.h); 0 is the shipped field. The report
+    // gives repeat r seed r beside its temporal offset, so its spread also
+    // covers how a pattern meets one particular field (docs/report.md).
+    int rotation_seed = 0;
     TimingMode timing = TimingMode::automatic;
     // Installs a KHR_debug callback: a GL error raised inside a pass becomes a
     // GraphicsError naming the pass (costs a synchronous debug context).
