@@ -23,9 +23,52 @@
 // the test exactly.
 layout(binding = 29) uniform sampler2DArray radiosity_backface_depth;
 
+// The pixel of camera-space point c, or (-1, -1) outside the buffer or before
+// the near plane.
+ivec2 radiosity_visibility_pixel(vec3 c) {
+  float z = -c.z;
+  if (z <= frame.camera_ray_scale.z) return ivec2(-1);
+  vec2 at = (c.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
+  if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return ivec2(-1);
+  return ivec2(at);
+}
+
+// Whether the camera sees c: before layer 0's depth at its pixel, or nothing
+// stored there (nothing known outside the buffer either).
+bool radiosity_point_seen(vec3 c) {
+  ivec2 p = radiosity_visibility_pixel(c);
+  if (p.x < 0) return true;
+  float depth = texelFetch(depth_pyramid, p, 0).r;
+  return depth <= 0.0 || -c.z < depth;
+}
+
+// The segment is seen at a and hidden from the camera at b: whether it goes
+// out of sight through the surface layer 0 stores there (a thin part it
+// crosses) rather than behind an edge of it (open space the camera cannot
+// see). Five halvings bring a and b within 1/32 of their distance; b then
+// lies on or just behind the surface it crossed, or far behind the edge it
+// slipped behind.
+bool radiosity_segment_enters_surface(vec3 a, vec3 b) {
+  for (int i = 0; i < 5; ++i) {
+    vec3 m = 0.5 * (a + b);
+    if (radiosity_point_seen(m)) a = m;
+    else b = m;
+  }
+  ivec2 p = radiosity_visibility_pixel(b);
+  if (p.x < 0) return false;
+  float depth = texelFetch(depth_pyramid, p, 0).r;
+  if (depth <= 0.0) return false;
+  float z = -b.z;
+  vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, 0), 0).xy);
+  float footprint = 2.0 * frame.camera_ray_scale.y / frame.internal_size.y * z;
+  return dot(b - surface, surface_normal) >= -(length(b - a) + 2.0 * footprint + 1.0e-3 * z);
+}
+
 bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thickness) {
   vec3 v = y - x;
   float step_length = length(v) / float(steps);
+  vec3 last_seen = x;  // the last point of the segment the camera sees
   for (int k = 0; k < steps; ++k) {
     vec3 q = x + v * ((float(k) + 0.5) / float(steps));
     float z = -q.z;
@@ -41,13 +84,19 @@ bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thick
       float depth = j == 0 ? depths.r : depths.g;
       if (depth <= 0.0 || z <= depth) continue;
       float back_face = texelFetch(radiosity_backface_depth, ivec3(p, j), 0).r;
-      float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
-                                        : depth + max(thickness, 2.0 * step_length);
-      if (z >= solid_end) continue;
+      float stored_end = back_face > 0.0 ? frame.camera_ray_scale.z / back_face : depth + thickness;
+      if (z >= max(stored_end, depth + 2.0 * step_length)) continue;
       vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
       vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, j), 0).xy);
-      if (dot(q - surface, surface_normal) < -1.0e-3 * z) return false;
+      if (dot(q - surface, surface_normal) >= -1.0e-3 * z) continue;
+      if (z < stored_end) return false;
+      // Past the stored solid but within two steps of its front: hidden if
+      // the segment went out of the camera's sight through a surface (it
+      // crossed a part thinner than the steps), not if it slipped behind an
+      // edge (the solid taken two steps deep would wrongly hide it).
+      if (radiosity_segment_enters_surface(last_seen, q)) return false;
     }
+    if (depths.r <= 0.0 || z < depths.r) last_seen = q;
   }
   return true;
 }
