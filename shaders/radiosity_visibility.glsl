@@ -11,16 +11,23 @@
 // t = (k + 1/2) / steps and calls Y hidden when one of them lies inside a
 // stored surface's solid, the way the AO march treats stored surfaces
 // (ao_march.glsl): behind the depth the layer stores at the point's pixel,
-// in front of where that surface's solid ends (its back face, at least two
-// steps deep so that a segment crossing a thin part lands inside it; behind
-// an open mesh, with no back face, `thickness` deep and also at least two
-// steps, or a segment would step over a single sheet), and behind that
-// surface's plane by more than 1 mm per metre of depth, the reconstruction
-// error of a stored point and its normal, so that X's and Y's own surfaces
-// never hide the segment that leaves them on their front sides. The steps
-// sit at fixed fractions of the segment: the rotation of the taps already
-// varies the segments from frame to frame, and the CPU mirror can follow
-// the test exactly.
+// in front of where that surface's solid ends (its back face; behind an open
+// mesh, with no back face, `thickness` deep), and behind that surface's
+// plane by more than 1 mm per metre of depth, the reconstruction error of a
+// stored point and its normal, so that X's and Y's own surfaces never hide
+// the segment that leaves them on their front sides.
+//
+// A segment can cross a part thinner than the steps' spacing between two
+// steps, so a point past the solid but within two steps of its front is
+// suspect too. It is hidden only where the segment left the camera's sight
+// through a surface (the crossing of a thin part), found by halving the
+// stretch from the last point the camera saw; where it slipped behind an
+// edge into space the camera cannot see, it is not: taking every solid two
+// steps deep hid light passing below a beam or behind a column's edge
+// (docs/radiosity.md, "Light the allowance hid"). The steps sit at fixed
+// fractions of the segment: the rotation of the taps already varies the
+// segments from frame to frame, and the CPU mirror can follow the test
+// exactly.
 layout(binding = 29) uniform sampler2DArray radiosity_backface_depth;
 
 // The pixel of camera-space point c, or (-1, -1) outside the buffer or before
