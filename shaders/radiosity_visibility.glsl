@@ -28,6 +28,8 @@
 // fractions of the segment: the rotation of the taps already varies the
 // segments from frame to frame, and the CPU mirror can follow the test
 // exactly.
+#include "radiosity_visibility_constants.h"
+
 layout(binding = 29) uniform sampler2DArray radiosity_backface_depth;
 
 // The pixel of camera-space point c, or (-1, -1) outside the buffer or before
@@ -52,11 +54,11 @@ bool radiosity_point_seen(vec3 c) {
 // The segment is seen at a and hidden from the camera at b: whether it goes
 // out of sight through the surface layer 0 stores there (a thin part it
 // crosses) rather than behind an edge of it (open space the camera cannot
-// see). Five halvings bring a and b within 1/32 of their distance; b then
-// lies on or just behind the surface it crossed, or far behind the edge it
-// slipped behind.
+// see). n = DEEPGI_RADIOSITY_CROSSING_HALVINGS halvings bring a and b within
+// 1/2^n of their distance; b then lies on or just behind the surface it
+// crossed, or far behind the edge it slipped behind.
 bool radiosity_segment_enters_surface(vec3 a, vec3 b) {
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < DEEPGI_RADIOSITY_CROSSING_HALVINGS; ++i) {
     vec3 m = 0.5 * (a + b);
     if (radiosity_point_seen(m)) a = m;
     else b = m;
@@ -78,6 +80,11 @@ bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thick
   vec3 last_seen = x;  // the last point of the segment the camera sees
   for (int k = 0; k < steps; ++k) {
     vec3 q = x + v * ((float(k) + 0.5) / float(steps));
+    // Whether a layer's solid, taken two steps deep, holds q past its stored
+    // end: the crossing test reads layer 0 only, so it runs once per step
+    // after the layers, not once per layer (on llvmpipe every lane of a
+    // batch pays for a call any of them makes).
+    bool suspect = false;
     float z = -q.z;
     // A point of the segment between two stored points projects between
     // their pixels, inside the buffer and behind the near plane; the checks
@@ -97,12 +104,13 @@ bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thick
       vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, j), 0).xy);
       if (dot(q - surface, surface_normal) >= -1.0e-3 * z) continue;
       if (z < stored_end) return false;
-      // Past the stored solid but within two steps of its front: hidden if
-      // the segment went out of the camera's sight through a surface (it
-      // crossed a part thinner than the steps), not if it slipped behind an
-      // edge (the solid taken two steps deep would wrongly hide it).
-      if (radiosity_segment_enters_surface(last_seen, q)) return false;
+      suspect = true;
     }
+    // Past a stored solid but within two steps of its front: hidden if the
+    // segment went out of the camera's sight through a surface (it crossed a
+    // part thinner than the steps), not if it slipped behind an edge (the
+    // solid taken two steps deep would wrongly hide it).
+    if (suspect && radiosity_segment_enters_surface(last_seen, q)) return false;
     if (depths.r <= 0.0 || z < depths.r) last_seen = q;
   }
   return true;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "sao_reference.hpp"
+#include "radiosity_visibility_constants.h"
 
 #include <glm/glm.hpp>
 
@@ -66,10 +67,11 @@ inline bool point_seen(const VisibilityInputs& in, glm::vec3 c) {
 
 // The segment is seen at a and hidden at b: whether it leaves the camera's
 // sight through the surface layer 0 stores (within b's distance to a, two
-// pixels' footprint and 1 mm per metre of its plane, after five halvings
+// pixels' footprint and 1 mm per metre of its plane, after
+// DEEPGI_RADIOSITY_CROSSING_HALVINGS halvings
 // of a to b) rather than behind an edge of it.
 inline bool segment_enters_surface(const VisibilityInputs& in, glm::vec3 a, glm::vec3 b) {
-    for (int i = 0; i < 5; ++i) {
+    for (int i = 0; i < DEEPGI_RADIOSITY_CROSSING_HALVINGS; ++i) {
         const glm::vec3 m = 0.5f * (a + b);
         if (point_seen(in, m))
             a = m;
@@ -95,6 +97,7 @@ inline bool sample_visible(const VisibilityInputs& in, glm::vec3 x, glm::vec3 y)
         const float z = -q.z;
         const glm::ivec2 p = visibility_pixel(in, q);
         if (p.x < 0) continue;
+        bool suspect = false;
         for (int j = 0; j < in.layers; ++j) {
             const float depth = in.depth[j].at(p.x, p.y, 0);
             if (depth <= 0.0f || z <= depth) continue;
@@ -104,8 +107,9 @@ inline bool sample_visible(const VisibilityInputs& in, glm::vec3 x, glm::vec3 y)
             if (glm::dot(q - stored_point(in, p, depth), stored_normal(in, p, j)) >= -1.0e-3f * z)
                 continue;
             if (z < stored_end) return false;
-            if (segment_enters_surface(in, last_seen, q)) return false;
+            suspect = true;
         }
+        if (suspect && segment_enters_surface(in, last_seen, q)) return false;
         const float front = in.depth[0].at(p.x, p.y, 0);
         if (front <= 0.0f || z < front) last_seen = q;
     }
