@@ -61,8 +61,12 @@ layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
 layout(location = 0) out vec4 out_irradiance;  // rgb: E, a: confidence
 
 // radiosity_sample_visible(): with visibility steps, a sample that other
-// stored geometry hides from X adds nothing (docs/radiosity.md).
+// stored geometry hides from X adds nothing (docs/radiosity.md). Compiled
+// into its own program (radiosity_pass.cpp), so the default one carries none
+// of its code.
+#if defined(RADIOSITY_VISIBILITY)
 #include "radiosity_visibility.glsl"
+#endif
 
 
 // w_ij above without its factor r^2 (the caller's), for a sample that passed
@@ -138,9 +142,10 @@ void main() {
       vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
       float cos_y = -dot(w, tap_normal);
       if (cos_y <= 0.0) continue;
-      if (gather.visibility_steps > 0 &&
-          !radiosity_sample_visible(position, y, gather.layers, gather.visibility_steps, gather.visibility_thickness))
+#if defined(RADIOSITY_VISIBILITY)
+      if (!radiosity_sample_visible(position, y, gather.layers, gather.visibility_steps, gather.visibility_thickness))
         continue;
+#endif
       float weight = 1.0;
       if (area) {
         float ratio = tap_depth / depth;
