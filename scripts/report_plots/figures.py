@@ -18,9 +18,10 @@ def plot_error_vs_ms(plt, table, patterns, taps, layers, out, others=()):
     # converged result keeps its bias, so against it a biased estimator
     # looks good. The right panel is the sampling error of the first
     # method's patterns, each against that same estimator converged.
-    panels = [("ref_blur_mae", "every estimator against the same truth: MAE against the "
+    # Two lines per title: on one line the two titles run into each other.
+    panels = [("ref_blur_mae", "every estimator against the same truth:\nMAE against the "
                "ray-traced reference (after the blur)", True),
-              ("conv_raw_mae", "sampling error of the patterns of one estimator: MAE against "
+              ("conv_raw_mae", "sampling error of the patterns of one estimator:\nMAE against "
                "its own converged result (before the blur)", False)]
     for ax, (column, title, with_others) in zip(axes, panels):
         for pattern in patterns:
