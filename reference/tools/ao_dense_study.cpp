@@ -91,7 +91,7 @@ int run(int argc, char** argv) {
     for (int y = layout.guard; y < h - layout.guard; y += stride) {
         for (int x = layout.guard; x < w - layout.guard; x += stride) {
             const float z = depth0.at(x, y);
-            if (!deepgi_tools::same_surface(z, traced.at(x, y))) continue;
+            if (!deepgi::same_surface_depth(z, traced.at(x, y))) continue;
             const glm::vec3 p = position(x + 0.5f, y + 0.5f, z);
             const glm::vec3 n(normal0.at(x, y, 0), normal0.at(x, y, 1), normal0.at(x, y, 2));
             const float beta = bias + footprint_factor * s * z;

@@ -48,7 +48,7 @@ int run(int argc, char** argv) {
     auto compared = [&](int x, int y) {
         // Only where both agree on the surface: silhouette pixels would
         // compare different points.
-        return deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y));
+        return deepgi::same_surface_depth(raster.at(x, y), traced.at(x, y));
     };
     double truth_sum = 0.0, truth_error_sum = 0.0;
     long long count = 0, empty = 0;

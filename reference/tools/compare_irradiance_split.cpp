@@ -53,7 +53,7 @@ int run(int argc, char** argv) {
             return 2;
         }
     auto compared = [&](int x, int y) {
-        return deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y));
+        return deepgi::same_surface_depth(raster.at(x, y), traced.at(x, y));
     };
     auto visible = [&](int x, int y, int c) {
         return double(part0.at(x, y, c)) + (layers == 2 ? double(part1.at(x, y, c)) : 0.0);

@@ -103,7 +103,7 @@ int run(int argc, char** argv) {
             for (int x = guard; x < truth.width - guard; ++x) {
                 // Only where both agree on the surface: silhouette pixels
                 // would compare different points.
-                if (!deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y))) continue;
+                if (!deepgi::same_surface_depth(raster.at(x, y), traced.at(x, y))) continue;
                 const double value = comparison.clamp
                                          ? std::clamp(double(estimate.at(x, y)), 0.0, 1.0)
                                          : double(estimate.at(x, y));

@@ -15,15 +15,16 @@
 //     sum L_ref, over the three channels; and the filtered radiance's over
 //     the pixels whose surface agrees, which leaves out the march's misses
 //     and keeps the shading's own error (the hit texel's lit radiance).
-// Prints one line of key=value pairs.
+// Prints one line of key=value pairs. The counting is the reference
+// library's compare_reflection_images (deepgi/reflection_comparison.hpp),
+// which the report's mirror rows count with too.
 #include "deepgi/image_io.hpp"
-#include "dump_frame.hpp"
+#include "deepgi/reflection_comparison.hpp"
 #include "tool_arguments.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -50,62 +51,22 @@ int run(int argc, char** argv) {
     const auto truth = deepgi::read_pfm(reference / "reference-reflection-radiance.pfm");
     const auto truth_hit = deepgi::read_pfm(reference / "reference-reflection-hit.pfm");
     const auto layers = deepgi::read_pfm(reference / "reference-surface-layers.pfm");
-    if (raster.width != truth.width || raster.height != truth.height || hit.width != truth.width ||
-        hit.height != truth.height || truth.channels != 3 || hit.channels < 3 ||
-        layers.channels != 3 || radiance.channels < 3) {
-        fmt::print(stderr, "size mismatch: dump {}x{}, reference {}x{}\n", raster.width,
-                   raster.height, truth.width, truth.height);
-        return 2;
-    }
-    long long mirrors = 0, same = 0, both_miss = 0, missed = 0, wrong = 0, extra = 0;
-    double truth_sum = 0.0, error_sum = 0.0, bias_sum = 0.0, filtered_error = 0.0,
-           filtered_bias = 0.0, same_truth = 0.0, same_error = 0.0, same_bias = 0.0;
-    for (int y = guard; y < truth.height - guard; ++y)
-        for (int x = guard; x < truth.width - guard; ++x) {
-            if (!deepgi_tools::same_surface(raster.at(x, y), traced.at(x, y))) continue;
-            if (layers.at(x, y, 2) != 1.0f || hit.at(x, y, 2) <= -2.0f) continue;
-            ++mirrors;
-            const int layer = int(hit.at(x, y, 2));
-            int surface = -1;
-            if (layer >= 0) {
-                const int hx = std::clamp(int(std::floor(hit.at(x, y, 0))), 0, hit.width - 1);
-                const int hy = std::clamp(int(std::floor(hit.at(x, y, 1))), 0, hit.height - 1);
-                surface = int(layers.at(hx, hy, std::min(layer, 1)));
-            }
-            const int expected = int(truth_hit.at(x, y, 0));
-            if (surface == expected) {
-                ++same;
-                if (expected < 0) ++both_miss;
-            } else if (surface < 0) {
-                ++missed;
-            } else if (expected < 0) {
-                ++extra;
-            } else {
-                ++wrong;
-            }
-            for (int c = 0; c < 3; ++c) {
-                const double t = truth.at(x, y, c);
-                truth_sum += t;
-                error_sum += std::abs(radiance.at(x, y, c) - t);
-                bias_sum += radiance.at(x, y, c) - t;
-                filtered_error += std::abs(filtered.at(x, y, c) - t);
-                filtered_bias += filtered.at(x, y, c) - t;
-                if (surface == expected) {
-                    same_truth += t;
-                    same_error += std::abs(filtered.at(x, y, c) - t);
-                    same_bias += filtered.at(x, y, c) - t;
-                }
-            }
-        }
-    const double n = std::max(mirrors, 1LL), sum = std::max(truth_sum, 1e-30);
+    // A dump that does not fit the reference throws: one line, exit status 2.
+    const deepgi::ReflectionComparison r = deepgi::compare_reflection_images(
+        {raster, hit, radiance, filtered, traced, truth, truth_hit, layers}, guard);
+    const double n = std::max(r.mirror_pixels, 1LL);
+    const double sum = std::max(r.radiance.truth, 1e-30);
+    const double same_truth = std::max(r.same_surface_filtered.truth, 1e-30);
     fmt::print(
         "mirror_pixels={} same_surface={:.4f} both_miss={:.4f} renderer_missed={:.4f} "
         "wrong_surface={:.4f} renderer_only={:.4f} mean_truth={:.4g} rel_mae={:.4f} "
         "rel_bias={:+.4f} filtered_rel_mae={:.4f} filtered_rel_bias={:+.4f} "
         "same_surface_filtered_rel_mae={:.4f} same_surface_filtered_rel_bias={:+.4f}\n",
-        mirrors, same / n, both_miss / n, missed / n, wrong / n, extra / n, truth_sum / (3.0 * n),
-        error_sum / sum, bias_sum / sum, filtered_error / sum, filtered_bias / sum,
-        same_error / std::max(same_truth, 1e-30), same_bias / std::max(same_truth, 1e-30));
+        r.mirror_pixels, r.same_surface / n, r.both_miss / n, r.renderer_missed / n,
+        r.wrong_surface / n, r.renderer_only / n, r.radiance.truth / (3.0 * n),
+        r.radiance.absolute_error / sum, r.radiance.error / sum, r.filtered.absolute_error / sum,
+        r.filtered.error / sum, r.same_surface_filtered.absolute_error / same_truth,
+        r.same_surface_filtered.error / same_truth);
     return 0;
 }
 

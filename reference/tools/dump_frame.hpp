@@ -3,16 +3,17 @@
 // (frame_layout, docs/design.md); the tools that work out again what the
 // renderer did need the viewport, the guard band and the lengths it ran
 // with, and every tool that sets a dump against the reference compares the
-// pixels where both see the same surface.
+// pixels where both see the same surface (deepgi::same_surface_depth, the
+// reference library's test, which the report uses too).
 #pragma once
 
 #include "deepgi/renderer.hpp"
+#include "deepgi/same_surface_depth.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <stdexcept>
 
 namespace deepgi_tools {
@@ -43,15 +44,6 @@ inline deepgi::RenderSettings with_scene_lengths(deepgi::RenderSettings settings
         if (deepgi::is_scene_length(row)) row.set(settings, deepgi::auto_length);
     settings.radiosity.radius = radiosity_radius;
     return deepgi::resolve_auto_lengths(settings, deepgi::scene_bounding_radius(scene));
-}
-
-// Whether a pixel's rasterised layer-0 depth (the dump's) and the ray
-// tracer's (the reference's, or a hit distance along the same camera ray)
-// see the same surface: both hit something, within 1e-3 of each other.
-// Silhouette pixels would otherwise compare different points.
-inline bool same_surface(float raster_depth, float traced_depth) {
-    return raster_depth > 0.0f && traced_depth > 0.0f &&
-           std::abs(raster_depth - traced_depth) <= 1e-3f * traced_depth;
 }
 
 }  // namespace deepgi_tools

@@ -244,7 +244,7 @@ int run(int argc, char** argv) {
     for (int y = layout.guard; y < h - layout.guard; ++y)
         for (int x = layout.guard; x < w - layout.guard; ++x) {
             const float a = layers[0].depth.at(x, y);
-            if (!deepgi_tools::same_surface(a, traced.at(x, y))) continue;
+            if (!deepgi::same_surface_depth(a, traced.at(x, y))) continue;
             const std::size_t i = std::size_t(y) * w + x;
             compared[i] = 1;
             const glm::dvec3 position = glm::dvec3(rays[i]) * double(a);

@@ -197,7 +197,7 @@ int run(int argc, char** argv) {
     for (int y = layout.guard; y < h - layout.guard; ++y)
         for (int x = layout.guard; x < w - layout.guard; ++x) {
             const float a = raster.at(x, y);
-            if (!deepgi_tools::same_surface(a, traced.at(x, y))) continue;
+            if (!deepgi::same_surface_depth(a, traced.at(x, y))) continue;
             const glm::vec3 n = glm::normalize(
                 to_world * glm::vec3(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)));
             if (glm::dot(n, facing) < min_cos) continue;

@@ -182,7 +182,7 @@ int run(int argc, char** argv) {
                               0.0f));
                 const deepgi::RayScene::Hit hit =
                     rays.intersect_front(eye, direction, camera.near_plane, 1e30f);
-                if (!hit.hit || !deepgi_tools::same_surface(depth.at(x, y), hit.distance)) continue;
+                if (!hit.hit || !deepgi::same_surface_depth(depth.at(x, y), hit.distance)) continue;
                 const std::size_t i = std::size_t(y) * w + x;
                 compared[i] = 1;
                 sums[i] = trace_pixel(rays, classify, eye + direction * hit.distance, hit.normal,

@@ -6,6 +6,7 @@
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/reference.hpp"
+#include "deepgi/reflection_comparison.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/report.hpp"
 #include "deepgi/report_reflections.hpp"
@@ -38,6 +39,34 @@ bool scene_has_mirror_material(const Scene& scene, float mirror_roughness) {
     });
 }
 
+// One configuration's shares and relative errors from the reference
+// library's comparison of its images (the key fields stay empty): the
+// errors are the filtered radiance's, NaN where the pixels they are taken
+// over have no traced radiance.
+ReflectionRow reflection_row(const ReflectionComparison& comparison) {
+    ReflectionRow row;
+    row.mirror_pixels = comparison.mirror_pixels;
+    const double n = double(std::max(comparison.mirror_pixels, 1LL));
+    row.same_surface = double(comparison.same_surface) / n;
+    row.renderer_missed = double(comparison.renderer_missed) / n;
+    row.other_surface = double(comparison.wrong_surface) / n;
+    row.renderer_only = double(comparison.renderer_only) / n;
+    auto relative = [](double sum, double truth) {
+        return truth > 0.0 ? sum / truth : std::nan("");
+    };
+    const RadianceSums& all = comparison.filtered;
+    row.rel_mae = relative(all.absolute_error, all.truth);
+    row.rel_bias = relative(all.error, all.truth);
+    const RadianceSums& same = comparison.same_surface_filtered;
+    row.same_surface_rel_mae = relative(same.absolute_error, same.truth);
+    row.same_surface_rel_bias = relative(same.error, same.truth);
+    row.meets_mirror = double(comparison.meets_mirror) / n;
+    const RadianceSums& chain = comparison.meets_mirror_filtered;
+    row.meets_mirror_rel_mae = relative(chain.absolute_error, chain.truth);
+    row.meets_mirror_rel_bias = relative(chain.error, chain.truth);
+    return row;
+}
+
 }  // namespace
 
 void validate(const ReflectionOptions& options) {
@@ -55,87 +84,6 @@ void validate(const ReflectionOptions& options) {
     if (options.frames < 1 || options.frames > 1000)
         throw InputError(
             fmt::format("--reflection-frames {} is out of range (1 to 1000)", options.frames));
-}
-
-ReflectionRow compare_reflections(const ReflectionImages& images, int guard) {
-    const FloatImage& truth = images.truth;
-    for (const FloatImage* image : {&images.raster_depth, &images.hit, &images.filtered,
-                                    &images.traced_depth, &images.truth_hit, &images.surfaces})
-        if (image->width != truth.width || image->height != truth.height)
-            throw std::invalid_argument(fmt::format("reflection images of {}x{} and {}x{}",
-                                                    image->width, image->height, truth.width,
-                                                    truth.height));
-    if (truth.channels != 3 || images.hit.channels < 3 || images.filtered.channels < 3 ||
-        images.surfaces.channels != 3 || images.truth_hit.channels != 3)
-        throw std::invalid_argument("reflection images without their channels");
-    long long mirrors = 0, same = 0, missed = 0, other = 0, only = 0;
-    double truth_sum = 0.0, error_sum = 0.0, bias_sum = 0.0;
-    double same_truth = 0.0, same_error = 0.0, same_bias = 0.0;
-    long long chained = 0;
-    double chain_truth = 0.0, chain_error = 0.0, chain_bias = 0.0;
-    const FloatImage& hit = images.hit;
-    for (int y = guard; y < truth.height - guard; ++y)
-        for (int x = guard; x < truth.width - guard; ++x) {
-            const float a = images.raster_depth.at(x, y), b = images.traced_depth.at(x, y);
-            if (!(a > 0.0f && b > 0.0f && std::abs(a - b) <= 1e-3f * b)) continue;
-            if (images.surfaces.at(x, y, 2) != 1.0f || hit.at(x, y, 2) <= -2.0f) continue;
-            ++mirrors;
-            // The renderer's hit texel, mapped to the surface the reference's
-            // camera ray finds in that layer there.
-            const int layer = int(hit.at(x, y, 2));
-            int surface = -1;
-            if (layer >= 0) {
-                const int hx = std::clamp(int(std::floor(hit.at(x, y, 0))), 0, hit.width - 1);
-                const int hy = std::clamp(int(std::floor(hit.at(x, y, 1))), 0, hit.height - 1);
-                surface = int(images.surfaces.at(hx, hy, std::min(layer, 1)));
-            }
-            const int expected = int(images.truth_hit.at(x, y, 0));
-            const bool agree = surface == expected;
-            if (agree)
-                ++same;
-            else if (surface < 0)
-                ++missed;
-            else if (expected < 0)
-                ++only;
-            else
-                ++other;
-            const bool chain =
-                images.meets_mirror &&
-                (*images.meets_mirror)[std::size_t(y) * std::size_t(truth.width) + std::size_t(x)];
-            chained += chain;
-            for (int c = 0; c < 3; ++c) {
-                const double t = truth.at(x, y, c), e = images.filtered.at(x, y, c);
-                if (chain) {
-                    chain_truth += t;
-                    chain_error += std::abs(e - t);
-                    chain_bias += e - t;
-                }
-                truth_sum += t;
-                error_sum += std::abs(e - t);
-                bias_sum += e - t;
-                if (agree) {
-                    same_truth += t;
-                    same_error += std::abs(e - t);
-                    same_bias += e - t;
-                }
-            }
-        }
-    ReflectionRow row;
-    row.mirror_pixels = mirrors;
-    const double n = double(std::max(mirrors, 1LL));
-    row.same_surface = double(same) / n;
-    row.renderer_missed = double(missed) / n;
-    row.other_surface = double(other) / n;
-    row.renderer_only = double(only) / n;
-    const double nan = std::nan("");
-    row.rel_mae = truth_sum > 0.0 ? error_sum / truth_sum : nan;
-    row.rel_bias = truth_sum > 0.0 ? bias_sum / truth_sum : nan;
-    row.same_surface_rel_mae = same_truth > 0.0 ? same_error / same_truth : nan;
-    row.same_surface_rel_bias = same_truth > 0.0 ? same_bias / same_truth : nan;
-    row.meets_mirror = double(chained) / n;
-    row.meets_mirror_rel_mae = chain_truth > 0.0 ? chain_error / chain_truth : nan;
-    row.meets_mirror_rel_bias = chain_truth > 0.0 ? chain_bias / chain_truth : nan;
-    return row;
 }
 
 std::vector<ReflectionRow> measure_reflection_rows(
@@ -214,10 +162,12 @@ std::vector<ReflectionRow> measure_reflection_rows(
         const FloatImage depth = r.read_pass_output("gbuffer-depth-layer0");
         const FloatImage hit = r.read_pass_output("reflection-hit");
         const FloatImage filtered = r.read_pass_output("reflection-temporal");
-        ReflectionRow row = compare_reflections(
-            {depth, hit, filtered, truth.depth_layer0, truth.reflection_radiance,
+        // Only the filtered radiance is read back: it stands in for this
+        // frame's too, which the rows do not report.
+        ReflectionRow row = reflection_row(compare_reflection_images(
+            {depth, hit, filtered, filtered, truth.depth_layer0, truth.reflection_radiance,
              truth.reflection_hit, truth.surface_layers, &meets_mirror},
-            guard);
+            guard));
         if (row.mirror_pixels == 0) {
             say(fmt::format("{}: no mirror pixels in view, no mirror rows", scene_name));
             return {};

@@ -4,7 +4,6 @@
 // often the renderer's march finds the surface the ray-traced reflection
 // hits, the error of the reflected radiance against the traced one, and the
 // reflection pass's milliseconds. Scenes without mirrors give no rows.
-#include "deepgi/image_io.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
 
@@ -63,23 +62,6 @@ struct ReflectionRow {
 
 // Throws deepgi::InputError naming the first invalid option.
 void validate(const ReflectionOptions& options);
-
-// What the renderer's read-back outputs and the reference's images give
-// for one configuration (counts and shares; the key fields stay empty).
-// `guard` is the guard band in pixels; the images are guard-banded.
-struct ReflectionImages {
-    const FloatImage& raster_depth;  // gbuffer-depth-layer0
-    const FloatImage& hit;           // reflection-hit
-    const FloatImage& filtered;      // reflection-temporal
-    const FloatImage& traced_depth;  // reference depth_layer0
-    const FloatImage& truth;         // reference reflection_radiance
-    const FloatImage& truth_hit;     // reference reflection_hit
-    const FloatImage& surfaces;      // reference surface_layers
-    // Per pixel, nonzero where the traced ray's first surface is a mirror;
-    // may be null (no pixel counts).
-    const std::vector<std::uint8_t>* meets_mirror = nullptr;
-};
-ReflectionRow compare_reflections(const ReflectionImages& images, int guard);
 
 // The mirror rows of one scene: nothing for a scene without a mirror
 // material or without mirror pixels in the compared viewport. `settings`
