@@ -11,13 +11,9 @@ target_compile_definitions(deepgi_ao_accuracy_tests PRIVATE SAO_TEST_BLUR_RADIUS
 add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
 set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 1800
   FIXTURES_SETUP ao_accuracy_figures)
-# Every target deepgi_ao_accuracy measures, target beside measured, printed by
-# an entry of its own that reports itself skipped while any target is missed,
-# so every ctest summary names the misses (print_targets.sh).
-add_test(NAME deepgi_ao_accuracy_targets_missed
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "AO accuracy targets" ao-accuracy-targets.md)
-set_tests_properties(deepgi_ao_accuracy_targets_missed PROPERTIES LABELS "runtime;sao"
-  FIXTURES_REQUIRED ao_accuracy_figures SKIP_RETURN_CODE 77)
+# Every target deepgi_ao_accuracy measures, printed (targets_missed.cmake).
+deepgi_add_targets_missed(NAME deepgi_ao_accuracy_targets_missed TITLE "AO accuracy targets"
+  TABLE ao-accuracy-targets.md FIXTURE ao_accuracy_figures LABELS runtime sao)
 
 # Deep radiosity against the reference's one-bounce irradiance (headless EGL
 # and Embree, one process for its scenes).
@@ -27,8 +23,6 @@ target_include_directories(deepgi_radiosity_accuracy_tests PRIVATE ${PROJECT_SOU
 add_test(NAME deepgi_radiosity_accuracy COMMAND deepgi_radiosity_accuracy_tests "[radiosity-accuracy]")
 set_tests_properties(deepgi_radiosity_accuracy PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600
   FIXTURES_SETUP radiosity_accuracy_figures)
-add_test(NAME deepgi_radiosity_accuracy_targets_missed
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "Radiosity accuracy targets"
-          radiosity-accuracy-targets.md)
-set_tests_properties(deepgi_radiosity_accuracy_targets_missed PROPERTIES LABELS "runtime;radiosity"
-  FIXTURES_REQUIRED radiosity_accuracy_figures SKIP_RETURN_CODE 77)
+deepgi_add_targets_missed(NAME deepgi_radiosity_accuracy_targets_missed
+  TITLE "Radiosity accuracy targets" TABLE radiosity-accuracy-targets.md
+  FIXTURE radiosity_accuracy_figures LABELS runtime radiosity)

@@ -20,11 +20,9 @@ set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIME
   FIXTURES_SETUP radiosity_visibility_figures)
 # The visibility test's targets behind thin occluders, printed; skipped while
 # any is missed.
-add_test(NAME deepgi_radiosity_visibility_targets_missed
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "Radiosity visibility targets"
-          radiosity-visibility-targets.md)
-set_tests_properties(deepgi_radiosity_visibility_targets_missed PROPERTIES
-  LABELS "runtime;radiosity" FIXTURES_REQUIRED radiosity_visibility_figures SKIP_RETURN_CODE 77)
+deepgi_add_targets_missed(NAME deepgi_radiosity_visibility_targets_missed
+  TITLE "Radiosity visibility targets" TABLE radiosity-visibility-targets.md
+  FIXTURE radiosity_visibility_figures LABELS runtime radiosity)
 
 # Temporal filter of the AO (labels runtime and sao).
 add_executable(deepgi_ao_temporal_tests ao_temporal_test.cpp)
@@ -37,10 +35,8 @@ add_test(NAME deepgi_ao_temporal COMMAND deepgi_ao_temporal_tests "[ao_temporal]
 set_tests_properties(deepgi_ao_temporal PROPERTIES LABELS "runtime;sao" TIMEOUT 600
   FIXTURES_SETUP ao_temporal_figures)
 # The filter's targets under camera motion, printed; skipped while any is missed.
-add_test(NAME deepgi_ao_temporal_targets_missed
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "AO temporal targets" ao-temporal-targets.md)
-set_tests_properties(deepgi_ao_temporal_targets_missed PROPERTIES LABELS "runtime;sao"
-  FIXTURES_REQUIRED ao_temporal_figures SKIP_RETURN_CODE 77)
+deepgi_add_targets_missed(NAME deepgi_ao_temporal_targets_missed TITLE "AO temporal targets"
+  TABLE ao-temporal-targets.md FIXTURE ao_temporal_figures LABELS runtime sao)
 
 # The temporal filters under a light change (labels runtime and radiosity).
 add_executable(deepgi_lighting_change_tests lighting_change_test.cpp)
@@ -67,7 +63,6 @@ add_test(NAME deepgi_temporal_convergence COMMAND deepgi_temporal_convergence_te
 set_tests_properties(deepgi_temporal_convergence PROPERTIES LABELS "runtime;radiosity" TIMEOUT 1200
   FIXTURES_SETUP temporal_convergence_figures)
 # The convergence targets, printed; skipped while any is missed.
-add_test(NAME deepgi_temporal_convergence_targets_missed
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/print_targets.sh "Temporal convergence targets" temporal-convergence-targets.md)
-set_tests_properties(deepgi_temporal_convergence_targets_missed PROPERTIES LABELS "runtime;radiosity"
-  FIXTURES_REQUIRED temporal_convergence_figures SKIP_RETURN_CODE 77)
+deepgi_add_targets_missed(NAME deepgi_temporal_convergence_targets_missed
+  TITLE "Temporal convergence targets" TABLE temporal-convergence-targets.md
+  FIXTURE temporal_convergence_figures LABELS runtime radiosity)

@@ -1,0 +1,15 @@
+# The "targets missed" entries (docs/architecture.md, "How tests are named"):
+# every target an accuracy suite measures, target beside measured, printed
+# from the table the suite wrote (print_targets.sh) by an entry of its own
+# that needs the suite's run and reports itself skipped while any target is
+# missed, so every ctest summary names the misses.
+#
+# deepgi_add_targets_missed(NAME <entry> TITLE <printed title> TABLE <table.md>
+#                           FIXTURE <the suite's FIXTURES_SETUP> LABELS <label>...)
+function(deepgi_add_targets_missed)
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "NAME;TITLE;TABLE;FIXTURE" "LABELS")
+  add_test(NAME ${ARG_NAME}
+    COMMAND sh ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/print_targets.sh "${ARG_TITLE}" ${ARG_TABLE})
+  set_tests_properties(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}"
+    FIXTURES_REQUIRED ${ARG_FIXTURE} SKIP_RETURN_CODE 77)
+endfunction()
