@@ -50,12 +50,10 @@ RegionStatistics floor_statistics(const FloatImage& visibility, const FloatImage
 
 TEST_CASE("ao_temporal: 16 static frames halve the AO's pixel-to-pixel noise and keep its mean",
           "[ao_temporal]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
-    RenderSettings settings = small_settings(320, 180);
-    Renderer renderer(scene, settings, loader);
-    renderer.render(scene.default_camera);
+    CornellRenderer cornell(small_settings(320, 180));
+    Renderer& renderer = cornell.renderer;
+    const Camera& camera = cornell.scene.default_camera;
+    renderer.render(camera);
     const FloatImage normal = renderer.read_pass_output("gbuffer-normal-layer0");
     const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
     const RegionStatistics one_frame =
@@ -63,7 +61,7 @@ TEST_CASE("ao_temporal: 16 static frames halve the AO's pixel-to-pixel noise and
     // The filter's output on the first frame is that frame's SAO result.
     CHECK(renderer.read_pass_output("ao-temporal").pixels ==
           renderer.read_pass_output("ao-raw").pixels);
-    for (int frame = 1; frame < 16; ++frame) renderer.render(scene.default_camera);
+    for (int frame = 1; frame < 16; ++frame) renderer.render(camera);
     const RegionStatistics filtered =
         floor_statistics(renderer.read_pass_output("ao-temporal"), normal, depth);
     WARN("AO over cornell's floor: neighbour difference one frame "
@@ -74,16 +72,13 @@ TEST_CASE("ao_temporal: 16 static frames halve the AO's pixel-to-pixel noise and
 }
 
 TEST_CASE("ao_temporal: alpha 0 passes the raw SAO result through", "[ao_temporal]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = small_settings(160, 90);
     settings.ao.alpha = 0.0f;
-    Renderer renderer(scene, settings, loader);
+    CornellRenderer cornell(settings);
     for (int frame = 0; frame < 3; ++frame) {
-        renderer.render(scene.default_camera);
-        CHECK(renderer.read_pass_output("ao-temporal").pixels ==
-              renderer.read_pass_output("ao-raw").pixels);
+        cornell.renderer.render(cornell.scene.default_camera);
+        CHECK(cornell.renderer.read_pass_output("ao-temporal").pixels ==
+              cornell.renderer.read_pass_output("ao-raw").pixels);
     }
 }
 
@@ -177,11 +172,8 @@ TEST_CASE(
     "ao_temporal: under a still camera the AO is the running mean of every frame's SAO and "
     "converges at least as fast as 1/sqrt(frames)",
     "[ao_temporal]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
-    RenderSettings settings = small_settings(96, 54);
-    Renderer renderer(scene, settings, loader);
+    CornellRenderer cornell(small_settings(96, 54));
+    Renderer& renderer = cornell.renderer;
     // The oracles: the mean of the raw results of frames 1..n (the running
     // mean) and, as the converged image, the mean of frames 65..320, whose
     // rotations none of the first 64 frames used.
@@ -190,7 +182,7 @@ TEST_CASE(
     std::vector<FloatImage> filtered;  // after 4, 16, 64 frames
     std::size_t running_ok = 0, running_pixels = 0;
     for (int frame = 1; frame <= early + late; ++frame) {
-        renderer.render(scene.default_camera);
+        renderer.render(cornell.scene.default_camera);
         const FloatImage raw = renderer.read_pass_output("ao-raw");
         std::vector<double>& sum = frame <= early ? running : converged;
         sum.resize(raw.pixels.size(), 0.0);

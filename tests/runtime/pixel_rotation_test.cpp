@@ -188,16 +188,14 @@ double fraction_changed(const FloatImage& a, const FloatImage& b, const FloatIma
 
 TEST_CASE("rotation: the rotation-seed setting reaches the gathers, and seed 0 is the default",
           "[rotation]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
-    RenderSettings settings = small_settings(160, 90);
-    Renderer renderer(scene, settings, loader);
+    const RenderSettings settings = small_settings(160, 90);
+    CornellRenderer cornell(settings);
+    Renderer& renderer = cornell.renderer;
     auto render = [&](int seed) {
         RenderSettings s = settings;
         s.rotation_seed = seed;
         renderer.set_settings(s);
-        renderer.render(scene.default_camera, CameraMotion::cut);
+        renderer.render(cornell.scene.default_camera, CameraMotion::cut);
         return std::array{renderer.read_pass_output("ao-raw"),
                           renderer.read_pass_output("radiosity-blurred")};
     };

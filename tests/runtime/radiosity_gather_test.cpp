@@ -215,14 +215,12 @@ float floor_red_over_green(const FloatImage& e, const GatherInputs& inputs, floa
 
 TEST_CASE("radiosity: cornell's floor is redder near the red wall and greener near the green one",
           "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const Scene scene = make_builtin_scene("cornell");
     const RenderSettings settings = gather_test_settings();
-    Renderer renderer(scene, settings, loader);
-    renderer.render(scene.default_camera);
-    const GatherInputs inputs = read_inputs(renderer, scene.default_camera, settings);
-    const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
+    CornellRenderer cornell(settings);
+    cornell.renderer.render(cornell.scene.default_camera);
+    const GatherInputs inputs =
+        read_inputs(cornell.renderer, cornell.scene.default_camera, settings);
+    const FloatImage e = cornell.renderer.read_pass_output("radiosity-irradiance-layer0");
     const float near_red = floor_red_over_green(e, inputs, -1.0f, -0.7f);
     const float near_green = floor_red_over_green(e, inputs, 0.7f, 1.0f);
     INFO("E red/green on the floor: " << near_red << " near the red wall, " << near_green

@@ -15,17 +15,6 @@
 namespace deepgi::test {
 namespace {
 
-// What most tests below begin with: a GL context, then the cornell scene and
-// a renderer of it with `settings` (the renderer keeps its own copies of the
-// settings and the shader loader).
-struct CornellRenderer {
-    explicit CornellRenderer(const RenderSettings& settings)
-        : renderer(scene, settings, ShaderLoader::from_build_configuration()) {}
-    HeadlessContext context;  // first: the renderer needs it
-    const Scene scene = make_builtin_scene("cornell");
-    Renderer renderer;
-};
-
 TEST_CASE("radiosity: with alpha 0 the temporal filter returns the raw gather", "[radiosity]") {
     RenderSettings settings = gather_test_settings();
     settings.radiosity.alpha = 0.0f;

@@ -126,18 +126,37 @@ std::pair<Region, Region> floor_irradiance(const Scene& scene, const ShaderLoade
     return {front, behind};
 }
 
-TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibility test",
-          "[radiosity]") {
+// What each test below begins with: a GL context and the build's shaders,
+// with which it measures the floor of a wall_behind_board() scene, always
+// gathering within 6 m.
+struct WallTest {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    static constexpr float radius = 6.0f;
+
+    std::pair<Region, Region> measure(const Scene& scene, int steps, float thickness = 0.0f) const {
+        return floor_irradiance(scene, loader, steps, radius, thickness);
+    }
+    // Without the visibility test, with enough pixels before the occluder
+    // and behind it to measure.
+    std::pair<Region, Region> measure_without_test(const Scene& scene) const {
+        const std::pair<Region, Region> regions = measure(scene, 0);
+        REQUIRE(regions.first.count > 200);
+        REQUIRE(regions.second.count > 60);
+        return regions;
+    }
+};
+
+TEST_CASE("radiosity: a wall hidden behind a board adds nothing with the visibility test",
+          "[radiosity]") {
+    const WallTest test;
     const Scene scene = wall_behind_board();
-    const float radius = 6.0f;
     Region front[2], behind[2];  // [visibility off, on]
     for (int on = 0; on < 2; ++on) {
         // Eight steps along segments up to 5.4 m: 0.68 m apart, about the
         // depth of the floor strip behind the board that the board hides
         // from the camera, so a step behind the board mostly lands inside it.
-        std::tie(front[on], behind[on]) = floor_irradiance(scene, loader, on ? 8 : 0, radius);
+        std::tie(front[on], behind[on]) = test.measure(scene, on ? 8 : 0);
     }
     for (int on = 0; on < 2; ++on) {
         REQUIRE(front[on].count > 200);
@@ -174,9 +193,7 @@ TEST_CASE(
     "radiosity: the visibility test hides the wall behind a 1 cm board as behind a 10 cm one, "
     "and behind an open sheet nearly as well",
     "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const float radius = 6.0f;
+    const WallTest test;
     // The target, as for the 10 cm board: behind the occluder the wall adds
     // at most 5% of its unoccluded light with 8 steps. A closed board 1 cm
     // deep meets it: its solid is taken two steps deep (1.1 m to 1.4 m
@@ -195,19 +212,15 @@ TEST_CASE(
     const auto leak = [](const Region& on, const Region& off) { return on.mean() / off.mean(); };
 
     const Scene thin = wall_behind_board(Occluder::thin_board);
-    const auto [thin_off, thin_behind_off] = floor_irradiance(thin, loader, 0, radius);
-    const auto [thin_on, thin_behind_on] = floor_irradiance(thin, loader, 8, radius);
-    REQUIRE(thin_off.count > 200);
-    REQUIRE(thin_behind_off.count > 60);
+    const auto [thin_off, thin_behind_off] = test.measure_without_test(thin);
+    const auto [thin_on, thin_behind_on] = test.measure(thin, 8);
     targets.check_at_most("1 cm board", "hidden light left", "8 steps", leak(thin_on, thin_off),
                           0.05);
     CHECK(thin_on.dark >= 0.95 * thin_on.count);
     CHECK(thin_behind_on.mean() == Approx(thin_behind_off.mean()).epsilon(1e-6));
 
     const Scene sheet = wall_behind_board(Occluder::open_sheet);
-    const auto [sheet_off, sheet_behind_off] = floor_irradiance(sheet, loader, 0, radius);
-    REQUIRE(sheet_off.count > 200);
-    REQUIRE(sheet_behind_off.count > 60);
+    const auto [sheet_off, sheet_behind_off] = test.measure_without_test(sheet);
     // Without the test the sheet's floor gets the wall's unoccluded light,
     // as the board's does.
     CHECK(sheet_off.mean() > 0.75 * sheet_off.oracle_mean());
@@ -215,7 +228,7 @@ TEST_CASE(
     std::vector<double> sheet_leak;  // 4, 8, 16 steps
     std::vector<int> sheet_dark;
     for (int steps : {4, 8, 16}) {
-        const auto [on, behind_on] = floor_irradiance(sheet, loader, steps, radius);
+        const auto [on, behind_on] = test.measure(sheet, steps);
         sheet_leak.push_back(leak(on, sheet_off));
         sheet_dark.push_back(on.dark);
         // Where nothing hides the wall the test removes nothing.
@@ -224,7 +237,7 @@ TEST_CASE(
     targets.check_at_most("open sheet", "hidden light left", "8 steps", sheet_leak[1], 0.05);
     // Two steps are deep enough: a solid taken 2 m deep (more than two
     // steps of these segments) hides no more.
-    const Region deep_on = floor_irradiance(sheet, loader, 8, radius, 2.0f).first;
+    const Region deep_on = test.measure(sheet, 8, 2.0f).first;
     const double deep_leak = leak(deep_on, sheet_off);
     CHECK(deep_leak < 0.1);
     CHECK(deep_leak == Approx(sheet_leak[1]).margin(0.005));
@@ -248,9 +261,7 @@ TEST_CASE(
     "radiosity: the visibility test keeps the light of segments that pass below a beam, hidden "
     "only from the camera",
     "[radiosity]") {
-    HeadlessContext context;
-    const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    const float radius = 6.0f;
+    const WallTest test;
     // The beam spans y in [1.0, 1.6] and the wall ends at 0.5, so no segment
     // from the floor to the wall meets it: the floor before it sees the whole
     // wall, and the unoccluded form factor is the oracle. From the camera,
@@ -260,12 +271,12 @@ TEST_CASE(
     // front without asking how the segment got there hid up to half of that
     // light (measured: 0.47 of it kept with 4 steps, 0.92 with 8, all with 16).
     const Scene scene = wall_behind_board(Occluder::beam);
-    const Region off = floor_irradiance(scene, loader, 0, radius).first;
+    const Region off = test.measure(scene, 0).first;
     REQUIRE(off.count > 200);
     CHECK(off.mean() > 0.75 * off.oracle_mean());
     CHECK(off.mean() < 1.25 * off.oracle_mean());
     for (int steps : {4, 8, 16}) {
-        const Region on = floor_irradiance(scene, loader, steps, radius).first;
+        const Region on = test.measure(scene, steps).first;
         REQUIRE(on.count == off.count);
         INFO(steps << " steps: " << on.mean() / off.mean() << " of the light kept");
         CHECK(on.mean() >= 0.99 * off.mean());

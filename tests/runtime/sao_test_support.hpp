@@ -1,7 +1,8 @@
 #pragma once
 // Shared by the deep SAO test files: tiny scenes built in the test (so each
 // expectation can be worked out by hand; test_scenes.hpp), tap patterns and
-// kernels other than the build's, and read-back helpers.
+// kernels other than the build's, read-back helpers, and the cornell
+// renderer the temporal and rotation tests begin with.
 #include "deepgi/context.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
@@ -48,5 +49,16 @@ inline RenderSettings small_settings(int width, int height) {
     settings.shadow_map_size = 64;
     return settings;
 }
+
+// What many tests begin with: a GL context, then the cornell scene and a
+// renderer of it with `settings` (the renderer keeps its own copies of the
+// settings and the shader loader).
+struct CornellRenderer {
+    explicit CornellRenderer(const RenderSettings& settings)
+        : renderer(scene, settings, ShaderLoader::from_build_configuration()) {}
+    HeadlessContext context;  // first: the renderer needs it
+    const Scene scene = make_builtin_scene("cornell");
+    Renderer renderer;
+};
 
 }  // namespace deepgi::test
