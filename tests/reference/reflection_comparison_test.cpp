@@ -90,6 +90,15 @@ struct HandMadeFrame {
     }
 };
 
+// Sums over three equal channels: three times the one channel's.
+void check_sums(const char* what, const deepgi::RadianceSums& sums, double truth,
+                double absolute_error, double error) {
+    INFO(what);
+    CHECK(sums.truth == 3 * truth);
+    CHECK(sums.absolute_error == 3 * absolute_error);
+    CHECK(sums.error == 3 * error);
+}
+
 }  // namespace
 
 TEST_CASE("reference: the reflection comparison counts hand-made pixels as worked out by hand",
@@ -109,21 +118,13 @@ TEST_CASE("reference: the reflection comparison counts hand-made pixels as worke
     // 0.5; this frame's |error| 0.5 + 0 + 2 + 2 + 1 + 0.25, error 0.5 + 0 - 2
     // + 2 + 1 - 0.25; filtered |error| 0.25 + 0 + 1.5 + 1 + 0.5 + 0.25, error
     // 0.25 + 0 - 1.5 + 1 + 0.5 + 0.25. Every value is exact in binary.
-    CHECK(r.radiance.truth == 3 * 5.0);
-    CHECK(r.radiance.absolute_error == 3 * 5.75);
-    CHECK(r.radiance.error == 3 * 1.25);
-    CHECK(r.filtered.truth == 3 * 5.0);
-    CHECK(r.filtered.absolute_error == 3 * 3.5);
-    CHECK(r.filtered.error == 3 * 0.5);
+    check_sums("this frame's", r.radiance, 5.0, 5.75, 1.25);
+    check_sums("filtered", r.filtered, 5.0, 3.5, 0.5);
     // The same-surface pixels (1, 1), (2, 1), (1, 2): truth 1 + 0.5 + 0.5,
     // filtered errors 0.25, 0, 0.25.
-    CHECK(r.same_surface_filtered.truth == 3 * 2.0);
-    CHECK(r.same_surface_filtered.absolute_error == 3 * 0.5);
-    CHECK(r.same_surface_filtered.error == 3 * 0.5);
+    check_sums("same surface", r.same_surface_filtered, 2.0, 0.5, 0.5);
     // The one pixel meeting a mirror, (4, 1): truth 1, filtered 2.
-    CHECK(r.meets_mirror_filtered.truth == 3 * 1.0);
-    CHECK(r.meets_mirror_filtered.absolute_error == 3 * 1.0);
-    CHECK(r.meets_mirror_filtered.error == 3 * 1.0);
+    check_sums("meets a mirror", r.meets_mirror_filtered, 1.0, 1.0, 1.0);
 
     // Without a mask no pixel meets a mirror, and the rest is unchanged.
     const deepgi::ReflectionComparison unmasked =
