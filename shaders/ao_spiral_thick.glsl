@@ -13,7 +13,8 @@
 // tap's azimuth.
 //
 // The hemisphere is kept as AO_THICK_SECTORS azimuth sectors of the tangent
-// plane, each a 32-bit mask over u = sin^2(elevation) in [0, 1]. With
+// plane (2 up to 12 taps, then growing like sqrt(AO_NUM_TAPS):
+// ao_thick_sectors.h), each a 32-bit mask over u = sin^2(elevation) in [0, 1]. With
 // cos(theta) = sin(elevation) the cosine-weighted measure of a band of
 // elevations is, per unit azimuth, (1/2) d(sin^2), so equal steps of u are
 // equal shares of the projected solid angle and a bit's share is
@@ -27,8 +28,11 @@
 // are open. A sector no tap on the buffer fell into is unknown rather than
 // open: the estimate is the mean over the sectors seen.
 
+#include "ao_thick_sectors.h"
+
+// A study may fix the count (a define of its own before this include).
 #ifndef AO_THICK_SECTORS
-#define AO_THICK_SECTORS 2
+#define AO_THICK_SECTORS DEEPGI_AO_THICK_SECTORS_FOR(AO_NUM_TAPS)
 #endif
 
 // Bits first to last of a 32-bit mask set, 0 <= first <= last <= 31.
@@ -117,7 +121,10 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
       bool upper = dot(f, bitangent) >= 0.0;
       informed |= upper ? 2u : 1u;
 #else
-      float azimuth = atan(dot(f, bitangent), dot(f, tangent));
+      // A tap straight above X (f along the normal) has no azimuth; GLSL
+      // leaves atan(0, 0) undefined, so it is taken as 0, as in the mirror.
+      float along_b = dot(f, bitangent), along_t = dot(f, tangent);
+      float azimuth = along_b == 0.0 && along_t == 0.0 ? 0.0 : atan(along_b, along_t);
       int sector = clamp(int(floor((azimuth * (0.5 / pi) + 0.5) * float(AO_THICK_SECTORS))), 0,
                          AO_THICK_SECTORS - 1);
       informed |= 1u << uint(sector);

@@ -8,6 +8,7 @@ target_include_directories(deepgi_sao_reference PUBLIC ${CMAKE_CURRENT_SOURCE_DI
 
 add_executable(deepgi_sao_tests
   sao_test.cpp
+  sao_thick_test.cpp
   depth_pyramid_test.cpp
   blur_test.cpp
   pixel_rotation_test.cpp
@@ -28,7 +29,7 @@ target_compile_definitions(deepgi_sao_tests PRIVATE
 # One ctest entry per Catch tag, so ctest -j spreads them over the cores.
 # (catch_discover_tests cannot carry two labels: Catch2 v2 splices the
 # properties unquoted.)
-foreach(tag reference pyramid blur rotation robustness compose antialias)
+foreach(tag reference thick pyramid blur rotation robustness compose antialias)
   add_test(NAME deepgi_sao_${tag} COMMAND deepgi_sao_tests "[${tag}]")
   set_tests_properties(deepgi_sao_${tag} PROPERTIES LABELS "runtime;sao" TIMEOUT 300)
 endforeach()

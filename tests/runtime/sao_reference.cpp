@@ -18,6 +18,9 @@ using uint = std::uint32_t;
 #undef DEEPGI_SHARED_FUNCTION
 }  // namespace shader
 
+// The thick spiral's sector count per tap count, the shader's own macro.
+#include "ao_thick_sectors.h"
+
 // The march (sao.frag, march_visibility): AV = 1 - mean f(d) over cosine-
 // weighted rays, each marched until it is first inside the solid behind a
 // stored surface: to its back face (at least two steps deep), or `thickness`
@@ -140,14 +143,15 @@ TapLookup look_up_tap(const spiral::codegen::Tap& tap, int x, int y, float c, fl
 // elevations between its ends at its azimuth; bands are unioned per azimuth
 // sector in bins of equal cosine-weighted measure (u = sin^2 of the
 // elevation), and a bin counts once, weighted by the falloff at the distance
-// of the first tap (in order of growing radius) that covers it.
-constexpr int thick_sectors = 2;
+// of the first tap (in order of growing radius) that covers it. The
+// sector count grows with the tap count (shaders/ao_thick_sectors.h).
 constexpr int thick_bins = 32;
+constexpr int thick_max_sectors = 8;
 
 float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float depth,
                               const SaoInputs& inputs,
                               const std::vector<spiral::codegen::Tap>& taps,
-                              const AoSettings& settings) {
+                              const AoSettings& settings, int thick_sectors) {
     const float height = float(inputs.pyramid.at(0).height);
     const float radius_pixels = settings.radius * (0.5f * height) / (inputs.ray_scale.y * depth);
     const float threshold = settings.bias + 0.5f * (2.0f * inputs.ray_scale.y * depth / height);
@@ -162,8 +166,8 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
     const float radius_squared = settings.radius * settings.radius;
     // covered[k][j]: bin j of sector k is already occluded by a nearer tap;
     // seen[k]: some tap on the buffer fell into sector k.
-    bool covered[thick_sectors][thick_bins] = {};
-    bool seen[thick_sectors] = {};
+    bool covered[thick_max_sectors][thick_bins] = {};
+    bool seen[thick_max_sectors] = {};
     double occlusion = 0.0;
     // Each tap stands for half the radial spacing of the taps of its sector
     // on either side of it (alpha units).
@@ -200,7 +204,11 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
                     std::abs(along) > 1.0e-6f ? glm::dot(front_point, tap_normal) / along : front;
                 return ray * std::clamp(t, 0.1f * front, 10.0f * front) - position;
             };
-            const float azimuth = std::atan2(glm::dot(f, bitangent), glm::dot(f, tangent));
+            // A tap straight above X has no azimuth: 0, as the shader takes it
+            // (atan2 of signed zeros could give +-pi).
+            const float along_b = glm::dot(f, bitangent), along_t = glm::dot(f, tangent);
+            const float azimuth =
+                along_b == 0.0f && along_t == 0.0f ? 0.0f : std::atan2(along_b, along_t);
             const int sector =
                 std::clamp(int(std::floor((azimuth / 6.2831853f + 0.5f) * float(thick_sectors))), 0,
                            thick_sectors - 1);
@@ -284,7 +292,9 @@ glm::vec2 renderer_ray_scale(const Camera& camera, const RenderSettings& setting
 
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
-                                        const AoSettings& settings) {
+                                        const AoSettings& settings, int thick_sectors) {
+    if (thick_sectors == 0) thick_sectors = DEEPGI_AO_THICK_SECTORS_FOR(int(taps.size()));
+    thick_sectors = std::clamp(thick_sectors, 1, thick_max_sectors);
     const FloatImage& base = inputs.pyramid.at(0);
     const int width = base.width;
     const int height = base.height;
@@ -310,9 +320,10 @@ FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                 continue;
             }
             if (settings.method == deepgi::AoMethod::spiral_thick) {
-                result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] = std::pow(
-                    spiral_thick_visibility(x, y, position, normal, depth, inputs, taps, settings),
-                    settings.intensity);
+                result.pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                    std::pow(spiral_thick_visibility(x, y, position, normal, depth, inputs, taps,
+                                                     settings, thick_sectors),
+                             settings.intensity);
                 continue;
             }
             const float radius_pixels =

@@ -52,9 +52,11 @@ struct SaoInputs {
 // Ambient visibility per pixel (1 channel, the pyramid's level-0 size): in
 // [0, 1] for the published and march methods, signed (at most 1) for the
 // solid-angle one. The first frame's: the frame sequence at its point 0 (no extra rotation).
+// thick_sectors: the thick spiral's azimuth sectors, 0 for the shader's count
+// for taps.size() (shaders/ao_thick_sectors.h), at most 8.
 FloatImage reference_ambient_visibility(const SaoInputs& inputs,
                                         const std::vector<spiral::codegen::Tap>& taps,
-                                        const AoSettings& settings);
+                                        const AoSettings& settings, int thick_sectors = 0);
 
 // Pixel centre (x + 1/2, y + 1/2) at linear depth z, as camera_position_at()
 // in gbuffer_encoding.glsl defines camera space: x, y from the NDC of the

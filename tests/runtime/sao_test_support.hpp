@@ -7,12 +7,16 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/scene_builder.hpp"
+#include "sao_reference.hpp"
 #include "support/runtime_support.hpp"
 #include "test_scenes.hpp"
 
 #include <spiral/codegen.hpp>
 #include <spiral/optimizer.hpp>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -60,5 +64,38 @@ struct CornellRenderer {
     const Scene scene = make_builtin_scene("cornell");
     Renderer renderer;
 };
+
+// One frame's SAO inputs and outputs, read back for the CPU evaluation.
+struct FrameReadBack {
+    SaoInputs inputs;
+    FloatImage raw;
+    FloatImage blurred;
+};
+
+inline FrameReadBack render_and_read(const Scene& scene, const RenderSettings& settings,
+                                     const ShaderLoader& loader) {
+    Renderer renderer(scene, settings, loader);
+    renderer.render(scene.default_camera);
+    FrameReadBack frame;
+    for (int level = 0;; ++level) {
+        const std::string name = fmt::format("depth_pyramid-level{}", level);
+        const auto names = renderer.pass_output_names();
+        if (std::find(names.begin(), names.end(), name) == names.end()) break;
+        frame.inputs.pyramid.push_back(renderer.read_pass_output(name));
+    }
+    frame.inputs.normals = renderer.read_pass_output("gbuffer-normal-layer0");
+    frame.inputs.normals_layer1 = renderer.read_pass_output("gbuffer-normal-layer1");
+    if (ao_method_reads_back_faces(settings.ao.method)) {
+        for (int layer = 0; layer < settings.ao.layers; ++layer)
+            frame.inputs.back_faces.push_back(
+                renderer.read_pass_output(fmt::format("backface-depth-layer{}", layer)));
+    }
+    frame.inputs.ray_scale = renderer_ray_scale(scene.default_camera, settings);
+    frame.inputs.near_plane = scene.default_camera.near_plane;
+    frame.inputs.q = settings.depth_pyramid.q;
+    frame.raw = renderer.read_pass_output("ao-raw");
+    frame.blurred = renderer.read_pass_output("ao-blurred");
+    return frame;
+}
 
 }  // namespace deepgi::test
