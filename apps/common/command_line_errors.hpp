@@ -10,9 +10,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace spiral_apps {
 
@@ -40,6 +43,36 @@ inline void report_error(std::string_view command, std::string_view message) {
     fmt::print(stderr, "{}: error: {}\n", command, one_line(message));
 }
 
+// CLI11's message, except for its two most common in a user's words: an
+// option given twice ("--size: At Most 1 required but received 2") and a
+// word no option takes ("The following argument was not expected: ...",
+// whose words CLI11 lists last first).
+inline std::string describe_parse_error(const CLI::ParseError& error) {
+    const std::string message = error.what();
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error) != nullptr) {
+        const std::string marker = ": At Most 1 required but received ";
+        if (const auto at = message.find(marker); at != std::string::npos)
+            return fmt::format("{} was given {} times; give it once", message.substr(0, at),
+                               message.substr(at + marker.size()));
+    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) {
+        const auto colon = message.find(": ");
+        std::vector<std::string> words;
+        std::istringstream list(colon == std::string::npos ? "" : message.substr(colon + 2));
+        for (std::string word; list >> word;) words.insert(words.begin(), word);
+        const auto option = std::find_if(words.begin(), words.end(), [](const std::string& w) {
+            return w.size() > 1 && w[0] == '-' && !std::isdigit(static_cast<unsigned char>(w[1])) &&
+                   w[1] != '.';
+        });
+        if (option != words.end())
+            return fmt::format("unknown option '{}' (--help lists the options)", *option);
+        if (!words.empty())
+            return fmt::format("unexpected argument '{}' (--help lists the options)",
+                               words.front());
+    }
+    return message;
+}
+
 // Parses the command line, every number on it plain decimal text
 // (strict_numbers.hpp). Returns the exit status when the program should stop
 // here: 0 after printing --help, exit_bad_input after a parse error.
@@ -53,7 +86,7 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, const char
         return 0;
     } catch (const CLI::ParseError& error) {
         // CLI11 messages can span lines; the contract is one line.
-        std::string message = error.what();
+        std::string message = describe_parse_error(error);
         std::replace(message.begin(), message.end(), '\n', ' ');
         report_error(command, message);
         return exit_bad_input;

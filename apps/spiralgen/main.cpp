@@ -6,6 +6,7 @@
 #include <spiral/fileio.hpp>
 
 #include "../strict_numbers.hpp"
+#include "command_line_errors.hpp"
 #include "commands.hpp"
 #include "help_formatter.hpp"
 
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        return fail(e.what());
+        return fail(spiral_apps::describe_parse_error(e));
     } catch (const std::exception& e) {
         return fail(e.what());
     }
