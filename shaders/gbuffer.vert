@@ -1,9 +1,11 @@
 #version 450 core
 // Variants (defines from gbuffer_pass.cpp):
-//   none              peel (and, with a geometry shader, previous / reproject)
-//   PREDICTION_LAYER  delay / predict: drawn with 3 instances, instance i into
-//                     array layer i, layer 2 placed by the next frame's camera
-#if defined(PREDICTION_LAYER)
+//   none              peel: one layer per draw
+//   SINGLE_PASS       previous / reproject: drawn with 2 instances, instance i
+//                     into array layer i
+//   PREDICTION_LAYER  delay / predict (with SINGLE_PASS): drawn with 3
+//                     instances, layer 2 placed by the next frame's camera
+#if defined(SINGLE_PASS)
 // The layer is chosen here, not in a geometry shader, so that every layer's
 // positions go through the same vertex stage as peel's: on llvmpipe a
 // geometry shader moves the viewport transform to another code path, which
@@ -40,8 +42,10 @@ void main() {
   vertex_out.current_clip = frame.projection * camera_position;
   vertex_out.previous_clip = frame.previous_view_projection * world;
   gl_Position = vertex_out.current_clip;
-#if defined(PREDICTION_LAYER)
+#if defined(SINGLE_PASS)
   gl_Layer = gl_InstanceID;
+#endif
+#if defined(PREDICTION_LAYER)
   // The third layer: the next frame's camera, the depth the next frame peels against.
   // The same expression as current_clip's, with the next frame's matrices.
   if (gl_InstanceID == 2) gl_Position = frame.next_projection * (frame.next_view * world);

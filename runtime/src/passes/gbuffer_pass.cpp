@@ -40,7 +40,7 @@ struct GBufferTargets {
 
 constexpr int prediction_layer = 2;
 
-// Delay and predict write gl_Layer from the vertex shader (gbuffer.vert).
+// The single-pass generators write gl_Layer from the vertex shader (gbuffer.vert).
 constexpr const char* vertex_layer_extension = "GL_ARB_shader_viewport_layer_array";
 
 bool has_gl_extension(const char* name) {
@@ -96,19 +96,19 @@ public:
                                                      {GL_FRAGMENT_SHADER, "gbuffer.frag"}};
         peel_first_layer_ = loader.build_program(two_stages);
         peel_second_layer_ = loader.build_program(two_stages, "#define PEEL_SECOND_LAYER 1\n");
-        single_pass_ = loader.build_program({{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                             {GL_GEOMETRY_SHADER, "gbuffer.geom"},
-                                             {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
-                                            "#define SINGLE_PASS 1\n");
-        // Delay and predict: no geometry shader; each triangle is drawn once
-        // per layer as an instance, the vertex shader choosing the layer. Their
-        // layer 0 and layer 1 then go through the same vertex stage as peel's
-        // and equal them bit for bit (gbuffer.vert says why a geometry shader
-        // would not). Without the extension that lets the vertex shader set
-        // the layer, only these two generators are refused, when asked for.
-        if (has_gl_extension(vertex_layer_extension))
+        // The single-pass generators: no geometry shader; each triangle is
+        // drawn once per layer as an instance, the vertex shader choosing the
+        // layer. Every layer then goes through the same vertex stage as peel's,
+        // so delay's and predict's layers equal peel's bit for bit, and so do
+        // previous's and reproject's wherever their reference is this frame's
+        // layer 0 (gbuffer.vert says why a geometry shader would not). Without
+        // the extension that lets the vertex shader set the layer, peel still
+        // runs and the other four are refused, when asked for.
+        if (has_gl_extension(vertex_layer_extension)) {
+            single_pass_ = loader.build_program(two_stages, "#define SINGLE_PASS 1\n");
             prediction_pass_ = loader.build_program(
                 two_stages, "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
+        }
     }
 
     std::string_view name() const override { return "gbuffer"; }
@@ -194,6 +194,10 @@ public:
                 glProgramUniform1f(program->get(), DEEPGI_UNIFORM_MIRROR_ROUGHNESS,
                                    frame.settings->mirror_roughness);
 
+        if (frame.settings->generator != Generator::peel && single_pass_.get() == 0)
+            throw GraphicsError(fmt::format("--generator {} needs {}, which this driver lacks",
+                                            to_string(frame.settings->generator),
+                                            vertex_layer_extension));
         if (frame.settings->generator == Generator::peel) {
             clear_gbuffer(first_layer_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, first_layer_framebuffer_.get());
@@ -212,10 +216,6 @@ public:
             glUseProgram(peel_second_layer_.get());
             draw_scene(scene, peel_second_layer_.get(), material_bindings);
         } else if (generator_predicts_next_frame(frame.settings->generator)) {
-            if (prediction_pass_.get() == 0)
-                throw GraphicsError(fmt::format("--generator {} needs {}, which this driver lacks",
-                                                to_string(frame.settings->generator),
-                                                vertex_layer_extension));
             // Delay / predict: layer 1 against the prediction the last frame
             // made of this frame's layer 0; this frame predicts the next's.
             glBindTextureUnit(reference_depth_binding, layer0_depth.previous());
@@ -230,7 +230,7 @@ public:
             clear_gbuffer(layered_framebuffer_, 4);
             glBindFramebuffer(GL_FRAMEBUFFER, layered_framebuffer_.get());
             glUseProgram(single_pass_.get());
-            draw_scene(scene, single_pass_.get(), material_bindings);
+            draw_scene(scene, single_pass_.get(), material_bindings, DEEPGI_LAYER_COUNT);
             copy_depth_layer(0, layer0_depth.written());
         }
         frame.publish("gbuffer.normal", targets_.normal.get());
@@ -280,7 +280,7 @@ private:
 
     gl::Program peel_first_layer_;
     gl::Program peel_second_layer_;
-    gl::Program single_pass_;      // with the geometry shader
+    gl::Program single_pass_;      // two instances, one per layer
     gl::Program prediction_pass_;  // three instances, the third the next frame's layer 0
     gl::Framebuffer first_layer_framebuffer_;
     gl::Framebuffer second_layer_framebuffer_;
