@@ -1,7 +1,8 @@
 // What the two test files of the glTF loader share (scene_gltf_geometry_test.cpp,
 // scene_gltf_materials_test.cpp): loading a file crafted in the test from
 // memory, the loader's message when it refuses one, a PNG encoded in memory,
-// and a five-vertex file drawn by primitives of any mode.
+// and a five-vertex file drawn by primitives of any mode. The render tests
+// (rendered_gltf.hpp) load their files and encode their textures with it too.
 #pragma once
 
 #include "deepgi/errors.hpp"

@@ -27,7 +27,10 @@ add_dependencies(deepgi_frame_limits_tests deepgi)
 catch_discover_tests(deepgi_frame_limits_tests PROPERTIES LABELS runtime TIMEOUT 120)
 
 # ---- glTF rendered end to end: built files and the Debian sample models ----
-add_executable(deepgi_gltf_render_tests ${CMAKE_CURRENT_LIST_DIR}/gltf_render_test.cpp)
+# Geometry and materials in one file, lights and shadows in the other; both
+# share rendered_gltf.hpp.
+add_executable(deepgi_gltf_render_tests ${CMAKE_CURRENT_LIST_DIR}/gltf_render_test.cpp
+                                        ${CMAKE_CURRENT_LIST_DIR}/gltf_lights_test.cpp)
 target_link_libraries(deepgi_gltf_render_tests PRIVATE deepgi::runtime spiral_catch_main fmt::fmt
                                                        PkgConfig::DEEPGI_TEST_STB)
 # glTF sample models shipped by Debian's assimp-testmodels (scripts/install-deps.sh).

@@ -8,6 +8,7 @@ target_include_directories(deepgi_sao_reference PUBLIC ${CMAKE_CURRENT_SOURCE_DI
 
 add_executable(deepgi_sao_tests
   sao_test.cpp
+  sao_compose_test.cpp
   sao_thick_test.cpp
   depth_pyramid_test.cpp
   blur_test.cpp
