@@ -31,9 +31,9 @@ def tie_section(directory, add):
             "converged result for the pick's mirror pair and for the best other pair (each the "
             "mean of its two reflections), their difference averaged over the repeats, the "
             "range of that difference over the repeats (its spread), and the mirror spread: "
-            "how far a pair's two reflections lie apart, the noise of the fixed per-pixel "
-            "rotations that the repeats do not vary. A difference within the larger of the two "
-            "names no winner.\n")
+            "how far a pair's two reflections lie apart, a difference the tie-break cannot "
+            "cause since it cannot choose between reflections. A difference within the larger "
+            "of the two names no winner.\n")
     else:
         add(intro + " This run was given no tie_error_study verdicts (`--ties-from`), so it "
             "does not say how the ties sample (docs/optimizer.md, 'Ties').\n")

@@ -23,8 +23,8 @@ struct TieErrors {
 
 // The pick's mirror pair against the best other pair. Tau and n - tau are
 // the same spiral reflected: no rule of evenness separates them, and which
-// of the two samples better depends on how the fixed per-pixel rotations
-// meet the reflection, so a pair is judged by the mean of its members.
+// of the two samples better depends on how the per-pixel rotations meet the
+// reflection, so a pair is judged by the mean of its members.
 struct TieVerdict {
     int n = 0;
     int pairs = 0;  // mirror pairs (tau, n - tau) among the ties
@@ -35,8 +35,11 @@ struct TieVerdict {
     double difference = 0.0;  // pick - other, mean of the per-repeat differences
     double spread = 0.0;      // range of the per-repeat differences
     // The larger |mae(tau) - mae(n - tau)| of the two pairs (means over the
-    // repeats): the noise of a pattern's realisation, which the repeats (one
-    // angle added to every pixel's rotation) do not vary.
+    // repeats): a difference no tie-break can cause, since none chooses
+    // between reflections. It was the only measure of a pattern's meeting
+    // with the per-pixel rotations while the study's repeats kept one field;
+    // with re-seeded repeats it still decides verdicts at three repeats
+    // (docs/optimizer.md, "Ties").
     double mirror_spread = 0.0;
     int repeats = 0;
     // The report's rule (docs/report.md, "Noise"): a difference no larger

@@ -5,13 +5,17 @@
 // converged, before the blur" column does (docs/results.md).
 //
 // Every tau is rendered --repeats times, repeat r with the temporal sequence
-// started at r * frames (the temporal-offset setting, as the report's
-// --repeats does), each a cut and --frames frames of a still camera whose
-// patterns the sequence turns. In one repeat every tau sees the same
-// rotations, so the pick and another tie are compared repeat by repeat: the
-// difference of their MAE, its mean and its range over the repeats. The
-// report's rule decides (docs/report.md, "Noise"): a difference no larger
-// than that spread names no winner (docs/optimizer.md, "Ties").
+// started at r * frames (the temporal-offset setting) and the per-pixel
+// rotation field of seed r (the rotation-seed setting), as the report's
+// --repeats does, each a cut and --frames frames of a still camera whose
+// patterns the sequence turns. Re-seeding matters: with one field every
+// repeat meets the pattern with the same per-pixel rotations, and the
+// repeats then miss most of the noise (--keep-rotation-seed reproduces that).
+// In one repeat every tau sees the same rotations, so the pick and another
+// tie are compared repeat by repeat: the difference of their MAE, its mean
+// and its range over the repeats. The report's rule decides (docs/report.md,
+// "Noise"): a difference no larger than that spread names no winner
+// (docs/optimizer.md, "Ties").
 // Only the raw AV of each frame is compared, never the temporal history.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -212,8 +216,18 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--repeats", repeats,
                    "Repeats of every tau, repeat r with the temporal sequence started at "
-                   "r * frames (the temporal-offset setting)")
+                   "r * frames (the temporal-offset setting) and rotation seed r")
         ->capture_default_str();
+    int first_repeat = 0;
+    app.add_option("--first-repeat", first_repeat,
+                   "Render repeats first-repeat .. first-repeat + repeats - 1 (their rows are "
+                   "those of a longer run, so runs split this way join with cat; their table "
+                   "is only printed by --table-from on the joined rows)")
+        ->capture_default_str();
+    bool keep_rotation_seed = false;
+    app.add_flag("--keep-rotation-seed", keep_rotation_seed,
+                 "Every repeat keeps rotation seed 0 (the shipped per-pixel field), as the study "
+                 "did before it re-seeded");
     app.add_option("--layers", layers, "Deep G-buffer layers the AO reads (1 or 2)")
         ->capture_default_str();
     app.add_option("--converged-taps", converged_taps, "Taps of the converged estimator")
@@ -245,6 +259,8 @@ int main(int argc, char** argv) {
                 "--min-n {} and --max-n {} must satisfy 1 <= min <= max <= 1024", min_n, max_n));
         if (frames < 1 || frames > 1000) throw deepgi::InputError("--frames must be in [1, 1000]");
         if (repeats < 1 || repeats > 16) throw deepgi::InputError("--repeats must be in [1, 16]");
+        if (first_repeat < 0 || first_repeat + repeats > 16)
+            throw deepgi::InputError("--first-repeat must be in [0, 16 - repeats]");
         if (layers != 1 && layers != 2) throw deepgi::InputError("--layers must be 1 or 2");
         if (converged_taps < 1 || converged_taps > 1024)
             throw deepgi::InputError("--converged-taps must be in [1, 1024]");
@@ -326,11 +342,13 @@ int main(int argc, char** argv) {
                 for (const int tau : result.ties) {
                     write_pattern(result.n, tau, fmt::format("tie {} of n = {}", tau, result.n));
                     deepgi::Renderer renderer(scene, settings, loader);
-                    for (int r = 0; r < repeats; ++r) {
+                    for (int r = first_repeat; r < first_repeat + repeats; ++r) {
                         // Every tau sees the same rotations in repeat r, so the
                         // comparison of two tau is paired; the repeats share none.
                         deepgi::RenderSettings repeat_settings = settings;
                         repeat_settings.temporal_offset = r * frames;
+                        if (!keep_rotation_seed)
+                            repeat_settings.rotation_seed = deepgi::report::repeat_rotation_seed(r);
                         renderer.set_settings(repeat_settings);
                         double sum = 0.0;
                         for (int f = 0; f < frames; ++f) {
@@ -354,12 +372,22 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "\n");
         }
 
+        if (first_repeat > 0) {
+            // Without repeats 0 .. first_repeat - 1 no n is complete.
+            fmt::print(
+                "Repeats {} to {} rendered; join their --csv rows with a run's from "
+                "repeat 0 and print the table with --table-from.\n",
+                first_repeat, first_repeat + repeats - 1);
+            return 0;
+        }
         finish(total, int(scenes.size()),
                fmt::format("Solid-angle estimator, {} layer(s), raw AV against the same estimator "
                            "at {} taps (smallest optimal tau), mean over {} still frame(s) per "
-                           "repeat and the scenes {}, {}x{}.",
+                           "repeat and the scenes {}, {}x{}; {}.",
                            layers, converged_taps, frames, fmt::join(scenes, ", "), settings.width,
-                           settings.height));
+                           settings.height,
+                           keep_rotation_seed ? "every repeat with rotation seed 0"
+                                              : "repeat r with rotation seed r"));
         return 0;
     } catch (const deepgi::InputError& error) {
         fmt::print(stderr, "tie_error_study: error: {}\n", error.what());
