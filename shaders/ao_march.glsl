@@ -13,7 +13,12 @@
 // open surfaces behind thin parts and past convex corners, as a slab of fixed
 // depth did (docs/deep-sao.md, "The march"). The solid is at least two steps
 // deep, so that a ray crossing a thin part lands inside it; behind an open
-// mesh (no back face) it is `thickness` deep.
+// mesh (no back face) it is `thickness` deep. Behind a part thinner than
+// two steps the allowance also fills space the part hides only from the
+// camera; the radiosity test's way out (a hit only where the ray left the
+// camera's sight through a surface) was measured here and lost far more
+// occlusion under slabs, boards and shelves than it freed (docs/deep-sao.md,
+// "The two steps' allowance").
 //
 // A step's point q, projected to pixel p, is inside when it lies
 //   - behind the depth stored at p: the plane alone is not enough, as the

@@ -14,6 +14,7 @@ add_executable(deepgi_sao_tests
   blur_test.cpp
   pixel_rotation_test.cpp
   antialias_test.cpp
+  ao_march_beam_test.cpp
 )
 target_link_libraries(deepgi_sao_tests PRIVATE deepgi_sao_reference spiral_catch_main)
 # Pass structs and the shared constants are private to the runtime library.
@@ -30,7 +31,7 @@ target_compile_definitions(deepgi_sao_tests PRIVATE
 # One ctest entry per Catch tag, so ctest -j spreads them over the cores.
 # (catch_discover_tests cannot carry two labels: Catch2 v2 splices the
 # properties unquoted.)
-foreach(tag reference thick pyramid blur rotation robustness compose antialias)
+foreach(tag reference thick march pyramid blur rotation robustness compose antialias)
   add_test(NAME deepgi_sao_${tag} COMMAND deepgi_sao_tests "[${tag}]")
   set_tests_properties(deepgi_sao_${tag} PROPERTIES LABELS "runtime;sao" TIMEOUT 300)
 endforeach()
