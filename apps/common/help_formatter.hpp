@@ -52,6 +52,10 @@ inline std::string with_unit(double value, std::string_view unit) {
     return number + " " + std::string(one ? unit.substr(0, unit.size() - 1) : unit);
 }
 
+// The default of a length that `auto` derives from the scene (ao-radius,
+// radiosity-radius, min-separation, ...), as deepgi and its subcommands show it.
+inline constexpr const char* scene_length_default = "auto, from the scene's size";
+
 // Installs the formatter on an app; its subcommands inherit it.
 inline void use_help_formatter(CLI::App& app) {
     app.formatter(std::make_shared<HelpFormatter>());

@@ -333,7 +333,7 @@ int main(int argc, char** argv) {
                             : deepgi::accepts_auto(row) ? "FLOAT|auto"
                                                         : "FLOAT")
                 ->default_str(
-                    deepgi::is_scene_length(row) ? std::string("auto, from the scene's size")
+                    deepgi::is_scene_length(row) ? std::string(spiral_apps::scene_length_default)
                     : auto_unless_given(row)     ? std::string("auto, from the frame's luminance")
                                              : spiral_apps::with_unit(row.get(defaults), row.unit))
                 ->group(row.group == "frame"        ? "Frame"

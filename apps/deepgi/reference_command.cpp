@@ -316,15 +316,12 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--threads", options.threads, "Worker threads (0: all hardware threads)")
         ->default_str("0, all hardware threads");
     const deepgi::RenderSettings defaults;
-    auto with_unit = [](float value, std::string_view name) {
-        return spiral_apps::with_unit(value, row(name).unit);
-    };
     app.add_option("--ao-radius", options.radius, row_help("ao-radius"))
-        ->default_str(with_unit(defaults.ao.radius, "ao-radius"));
+        ->default_str(spiral_apps::scene_length_default);
     app.add_option("--guard-band", options.guard_band, row_help("guard-band"))
         ->default_str(fmt::format("{} of the height", defaults.guard_band_fraction));
     app.add_option("--min-separation", options.min_separation, row_help("min-separation"))
-        ->default_str(with_unit(defaults.min_separation, "min-separation"));
+        ->default_str(spiral_apps::scene_length_default);
     app.add_flag("--no-ao", options.no_ao, "Do not trace ambient visibility");
     app.add_flag("--no-irradiance", options.no_irradiance, "Do not trace one-bounce irradiance");
     app.add_flag("--no-reflections", options.no_reflections,
@@ -332,7 +329,7 @@ int run_reference_command(int argc, char** argv) {
     app.add_option("--mirror-roughness", options.mirror_roughness, row_help("mirror-roughness"))
         ->default_str(fmt::format("{}", defaults.mirror_roughness));
     app.add_option("--radiosity-radius", options.radiosity_radius, row_help("radiosity-radius"))
-        ->default_str(with_unit(defaults.radiosity.radius, "radiosity-radius"));
+        ->default_str(spiral_apps::scene_length_default);
     app.add_option("--irradiance-rays", options.irradiance_rays,
                    "Most irradiance rays per pixel (cosine directions and emitter shadow rays)")
         ->default_str(fmt::format("{} rays", options.irradiance_rays));
