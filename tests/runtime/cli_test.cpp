@@ -72,8 +72,7 @@ TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtim
     require_one_line_error("--headless --size 160x90 --frames 0", "--frames");
     require_one_line_error("--headless --size 160x90 --no-such-option",
                            "unknown option '--no-such-option'");
-    require_one_line_error("--headless --size 160x90 --ao-taps 11",
-                           "unknown option '--ao-taps'");
+    require_one_line_error("--headless --size 160x90 --ao-taps 11", "unknown option '--ao-taps'");
     require_one_line_error("--headless --size 160x90 stray", "unexpected argument 'stray'");
     require_one_line_error("--headless --size 160x90 --size 320x180",
                            "--size was given 2 times; give it once");
