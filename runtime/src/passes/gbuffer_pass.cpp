@@ -11,8 +11,6 @@
 
 #include <fmt/format.h>
 
-#include <cstring>
-
 namespace deepgi {
 
 namespace {
@@ -42,17 +40,6 @@ constexpr int prediction_layer = 2;
 
 // The single-pass generators write gl_Layer from the vertex shader (gbuffer.vert).
 constexpr const char* vertex_layer_extension = "GL_ARB_shader_viewport_layer_array";
-
-bool has_gl_extension(const char* name) {
-    GLint count = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-    for (GLint i = 0; i < count; ++i) {
-        const auto* extension =
-            reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (extension != nullptr && std::strcmp(extension, name) == 0) return true;
-    }
-    return false;
-}
 
 int gbuffer_layers(Generator generator) {
     return generator_predicts_next_frame(generator) ? prediction_layer + 1 : DEEPGI_LAYER_COUNT;
@@ -104,7 +91,7 @@ public:
         // layer 0 (gbuffer.vert says why a geometry shader would not). Without
         // the extension that lets the vertex shader set the layer, peel still
         // runs and the other four are refused, when asked for.
-        if (has_gl_extension(vertex_layer_extension)) {
+        if (epoxy_has_gl_extension(vertex_layer_extension)) {
             single_pass_ = loader.build_program(two_stages, "#define SINGLE_PASS 1\n");
             prediction_pass_ = loader.build_program(
                 two_stages, "#define SINGLE_PASS 1\n#define PREDICTION_LAYER 1\n");
