@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include "evaluate.hpp"
@@ -46,6 +47,13 @@ spiral::SearchResult break_tie_by_brute_force(int n, std::int64_t m = 1) {
         }
     }
     return result;
+}
+
+// The inverse of tau modulo n (gcd(tau, n) = 1), by trying every residue.
+int inverse_mod(int tau, int n) {
+    for (int t = 1; t < n; ++t)
+        if (tau * t % n == 1) return t;
+    return n == 1 ? 0 : -1;
 }
 
 }  // namespace
@@ -127,6 +135,53 @@ TEST_CASE("ties: the chosen tau is always one of the ties, whatever their order"
             CHECK(std::find(result.ties.begin(), result.ties.end(), result.tau) !=
                   result.ties.end());
         }
+}
+
+// Exchanging the roles of radius and angle maps the lattice of tau to that of
+// its inverse modulo n (docs/design.md, section 2, "Ties"). D does not see
+// the exchange, so with the mirror image every tau has up to four spirals of
+// equal D, and the tie sets are unions of these orbits.
+TEST_CASE("ties: D is the same for tau and its inverse modulo n", "[ties][oracle]") {
+    SECTION("the brute force, every tau prime to n, n <= 30") {
+        for (int n = 2; n <= 30; ++n)
+            for (int tau = 1; tau < n; ++tau) {
+                if (std::gcd(tau, n) != 1) continue;
+                INFO("n = " << n << ", tau = " << tau);
+                CHECK(spiral::discrepancy_brute_force(n, tau).scaled ==
+                      spiral::discrepancy_brute_force(n, inverse_mod(tau, n)).scaled);
+            }
+    }
+    SECTION("the evaluator, every tau prime to n, n <= 200") {
+        for (int n = 31; n <= 200; ++n)
+            for (int tau = 1; tau < n; ++tau) {
+                if (std::gcd(tau, n) != 1) continue;
+                INFO("n = " << n << ", tau = " << tau);
+                CHECK(spiral::discrepancy_scaled(n, tau) ==
+                      spiral::discrepancy_scaled(n, inverse_mod(tau, n)));
+            }
+    }
+    SECTION("every tie set is closed under the mirror and the inverse, n <= 200") {
+        int two_pairs_to_64 = 0;
+        std::vector<int> four_pairs;
+        for (const auto& result : spiral::search_range(3, 200)) {
+            INFO("n = " << result.n);
+            for (const int tau : result.ties) {
+                REQUIRE(std::gcd(tau, result.n) == 1);
+                const auto has = [&](int t) {
+                    return std::find(result.ties.begin(), result.ties.end(), t) !=
+                           result.ties.end();
+                };
+                CHECK(has(result.n - tau));
+                CHECK(has(inverse_mod(tau, result.n)));
+            }
+            if (result.ties.size() == 4 && result.n <= 64) ++two_pairs_to_64;
+            if (result.ties.size() == 8) four_pairs.push_back(result.n);
+        }
+        // Two pairs tie at 38 n of 3..64 (the tie study's rows), each an
+        // orbit of four; two orbits of four tie only at these n up to 200.
+        CHECK(two_pairs_to_64 == 38);
+        CHECK(four_pairs == std::vector<int>{100, 162, 167});
+    }
 }
 
 TEST_CASE("ties: hard cases", "[ties][hard]") {
