@@ -306,6 +306,13 @@ int main(int argc, char** argv) {
         if (!table_from.empty()) {
             std::vector<std::string> csv_scenes;
             const Totals total = read_csv(table_from, csv_scenes, repeats);
+            // The table lists the tied n of --min-n..--max-n: rows outside
+            // would be dropped without a word.
+            for (const auto& [key, cell] : total)
+                if (const int n = std::get<0>(key); n < min_n || n > max_n)
+                    throw deepgi::InputError(fmt::format(
+                        "--table-from '{}' has rows for n = {}, outside --min-n {} .. --max-n {}",
+                        table_from, n, min_n, max_n));
             finish(total, int(csv_scenes.size()),
                    fmt::format("From {}; scenes {}.", table_from, fmt::join(csv_scenes, ", ")));
             return 0;
