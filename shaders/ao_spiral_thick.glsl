@@ -1,8 +1,8 @@
 // The thickness-aware spiral estimator of deep SAO (docs/design.md, section
 // 5.6; docs/deep-sao.md, "The thick spiral"). Included by sao.frag where
 // AO_METHOD is DEEPGI_AO_METHOD_SPIRAL_THICK; reads what sao.frag declares
-// (the depth pyramid, the back-face depths, the generated taps of
-// ao_taps.glsl).
+// (the depth pyramid, which carries the back-face depths for this estimator,
+// the generated taps of ao_taps.glsl).
 //
 // Every stored surface is the front of a solid that reaches back along its
 // camera ray to the nearest back face behind it (backface_depth.frag), or
@@ -99,7 +99,9 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     int level;
     vec2 tap_centre;
     if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
-    vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
+    // Both layers' front depths (RG) and back faces (BA, linear, 0 = none:
+    // depth_pyramid.comp) in one fetch.
+    vec4 tap_depths = texelFetch(depth_pyramid, texel, level);
     ivec2 source = ivec2(tap_centre);
     vec2 direction = rotation * AO_TAP_OFFSETS[i] * (radius_pixels / AO_TAP_ALPHAS[i]);
     // The tap stands for its sector's radial cell: its surface, taken as
@@ -110,8 +112,8 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     for (int layer = 0; layer < AO_LAYERS; ++layer) {
       float front = layer == 0 ? tap_depths.r : tap_depths.g;
       if (front <= 0.0) continue;
-      float back_face = texelFetch(backface_depth, ivec3(source, layer), 0).r;
-      float back = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, front) : front + sao.thickness;
+      float back_face = layer == 0 ? tap_depths.b : tap_depths.a;
+      float back = back_face > 0.0 ? max(back_face, front) : front + sao.thickness;
       vec3 front_point = tap_ray * front;
       vec3 f = front_point - position;
       vec3 b = tap_ray * back - position;
