@@ -1,8 +1,8 @@
 // The thickness-aware spiral estimator of deep SAO (docs/design.md, section
 // 5.6; docs/deep-sao.md, "The thick spiral"). Included by sao.frag where
 // AO_METHOD is DEEPGI_AO_METHOD_SPIRAL_THICK; reads what sao.frag declares
-// (the depth pyramid, the back-face depths, the generated taps of
-// ao_taps.glsl).
+// (the depth pyramid, which carries the back-face depths for this estimator,
+// the generated taps of ao_taps.glsl).
 //
 // Every stored surface is the front of a solid that reaches back along its
 // camera ray to the nearest back face behind it (backface_depth.frag), or
@@ -41,57 +41,181 @@ uint bit_range(int first, int last) {
 }
 
 // u = sin^2 of the elevation of v above X's plane raised by threshold, from
-// v's height above X's plane; a point below the raised plane is at 0.
-float elevation_u(vec3 v, float height_above_plane, float threshold) {
+// v's height above X's plane and its squared length; a point below the
+// raised plane is at 0.
+float elevation_u(float length_squared, float height_above_plane, float threshold) {
   float height = height_above_plane - threshold;
-  return height > 0.0 ? min(height * height / dot(v, v), 1.0) : 0.0;
+  return height > 0.0 ? min(height * height / length_squared, 1.0) : 0.0;
 }
 
-// Where the camera ray `ray` (at unit depth) meets the tap's plane, given by
-// its normal and plane_offset = dot(point on it, normal); depth kept within
-// a factor 10 of the tap's, so a plane seen edge-on does not run off to
-// infinity.
-vec3 cell_end(vec3 ray, vec3 plane_normal, float plane_offset, float depth) {
-  float along = dot(ray, plane_normal);
-  float t = abs(along) > 1.0e-6 ? plane_offset / along : depth;
-  return ray * clamp(t, 0.1 * depth, 10.0 * depth);
+// One end of a tap's radial cell: u of the point where the camera ray
+// x_ray + alpha * step (X's ray moved alpha along the tap's direction, at
+// unit depth) meets the tap's plane, given by x_along = dot(x_ray, n),
+// step_along = dot(step, n) and plane_offset = dot(point on it, n); depth
+// kept within a factor 10 of the tap's (front), so a plane seen edge-on
+// does not run off to infinity. The point, less X = x_ray * depth, is
+// x_ray * (t - depth) + step * (alpha t): its height and squared length come
+// from X's dot products (CellFrame), a few multiplies instead of a vector.
+struct CellFrame {
+  float depth;        // X's linear depth
+  float x_normal;     // dot(x_ray, X's normal)
+  float x_x;          // dot(x_ray, x_ray)
+  float step_normal;  // dot(step, X's normal)
+  float step_x;       // dot(step, x_ray)
+  float step_step;    // dot(step, step)
+};
+
+float cell_end_u(CellFrame cell, float alpha, float x_along, float step_along, float plane_offset,
+                 float front, float threshold) {
+  float along = x_along + alpha * step_along;
+  float t = abs(along) > 1.0e-6 ? plane_offset / along : front;
+  t = clamp(t, 0.1 * front, 10.0 * front);
+  float s = t - cell.depth, w = alpha * t;
+  float height = s * cell.x_normal + w * cell.step_normal;
+  float length_squared = s * (s * cell.x_x + 2.0 * w * cell.step_x) + w * w * cell.step_step;
+  return elevation_u(length_squared, height, threshold);
 }
 
-// threshold: points less than this above X's tangent plane are X's own
-// surface (sao.frag's footprint threshold); elevations are measured from
-// that raised plane.
-//
-// The cost is the loop body's, per tap and layer (docs/ao-accuracy.md, the
+// What every tap of one pixel shares: X, its tangent frame (the sectors
+// turn with the pixel's rotation), the footprint threshold (points less than
+// it above X's tangent plane are X's own surface, sao.frag; elevations are
+// measured from that raised plane), the radius and X's camera ray.
+struct ThickPixel {
+  vec3 position;
+  vec3 normal;
+  vec3 tangent;
+  vec3 bitangent;
+  float threshold;
+  float radius_squared;
+  float inverse_radius_squared;
+  vec3 x_ray;  // the camera ray through X at unit depth: X is x_ray * depth
+  CellFrame cell_frame;
+};
+
+// What both layers of one tap share.
+struct ThickTap {
+  ivec2 source;          // the full-resolution pixel the tap's depths came from
+  vec3 ray;              // the camera ray through it at unit depth
+  vec3 step;             // X's camera ray moves by step per unit alpha along the tap's direction
+  float near_alpha;      // the tap's radial cell, in alpha
+  float far_alpha;
+  float nearest_depth;   // depth along ray of its point nearest X
+};
+
+// The hemisphere so far: the bitmasks, the sectors seen, the occlusion.
+struct ThickState {
+#if AO_THICK_SECTORS == 2
+  uint mask_lower;
+  uint mask_upper;
+#else
+  uint masks[AO_THICK_SECTORS];
+#endif
+  // Sectors some tap landed in on the buffer: the others (taps off the
+  // guard band, towards the camera next to the bottom edge) are unknown,
+  // not open, and leave the estimate to the sectors that were seen.
+  uint informed;
+  float occlusion;
+};
+
+// One layer's solid of one tap, from its front depth to its back face
+// (linear, 0 = none: sao.thickness deep), into the hemisphere. A function
+// called once per layer with a constant layer, not a loop over the layers:
+// llvmpipe runs a loop over the layers as a loop, each select on the layer
+// at run time.
+void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, int layer, float front,
+                     float back_face) {
+  if (front <= 0.0) return;
+  float back = back_face > 0.0 ? max(back_face, front) : front + sao.thickness;
+  vec3 front_point = tap.ray * front;
+  vec3 f = front_point - px.position;
+  vec3 b = tap.ray * back - px.position;
+  // The front point's azimuth decides the sector.
+#if AO_THICK_SECTORS == 2
+  // atan(y, x) in (-pi, pi] falls in the upper half exactly where y >= 0.
+  bool upper = dot(f, px.bitangent) >= 0.0;
+  state.informed |= upper ? 2u : 1u;
+#else
+  // A tap straight above X (f along the normal) has no azimuth; GLSL
+  // leaves atan(0, 0) undefined, so it is taken as 0, as in the mirror.
+  float along_b = dot(f, px.bitangent), along_t = dot(f, px.tangent);
+  float azimuth = along_b == 0.0 && along_t == 0.0 ? 0.0 : atan(along_b, along_t);
+  int sector = clamp(int(floor((azimuth * (0.5 / pi) + 0.5) * float(AO_THICK_SECTORS))), 0,
+                     AO_THICK_SECTORS - 1);
+  state.informed |= 1u << uint(sector);
+#endif
+  // The segment's nearest point to X gives the distance of the falloff.
+  vec3 nearest = tap.ray * clamp(tap.nearest_depth, front, back) - px.position;
+  float dd = dot(nearest, nearest);
+  float height_f = dot(f, px.normal), height_b = dot(b, px.normal);
+  // Beyond the radius, or below X's plane: hides nothing.
+  if (dd >= px.radius_squared || (height_f <= px.threshold && height_b <= px.threshold)) return;
+  vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(tap.source, layer), 0).xy);
+  float plane_offset = dot(front_point, tap_normal);
+  float x_along = dot(px.x_ray, tap_normal), step_along = dot(tap.step, tap_normal);
+  float u_f = elevation_u(dot(f, f), height_f, px.threshold);
+  float u_b = elevation_u(dot(b, b), height_b, px.threshold);
+  float u_near = cell_end_u(px.cell_frame, tap.near_alpha, x_along, step_along, plane_offset, front, px.threshold);
+  float u_far = cell_end_u(px.cell_frame, tap.far_alpha, x_along, step_along, plane_offset, front, px.threshold);
+  // Where the tap's plane meets the camera ray through X behind X, the
+  // tap's surface runs into X's (a crease): it is taken to continue
+  // down to X's plane, and its band to start at the horizon. In front
+  // of X it would be a surface invented in front of X (a silhouette).
+  // That is plane_offset / toward_x >= 1, without the division.
+  float toward_x = dot(px.position, tap_normal);
+  bool crease = toward_x > 0.0 ? plane_offset >= toward_x : toward_x < 0.0 && plane_offset <= toward_x;
+  int first = crease ? 0 : min(int(min(min(u_f, u_b), min(u_near, u_far)) * 32.0), 31);
+  int last = min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
+  uint bits = bit_range(first, last);
+#if AO_THICK_SECTORS == 2
+  uint fresh = bits & ~(upper ? state.mask_upper : state.mask_lower);
+  state.mask_upper |= upper ? bits : 0u;
+  state.mask_lower |= upper ? 0u : bits;
+#else
+  uint fresh = bits & ~state.masks[sector];
+  state.masks[sector] |= bits;
+#endif
+  state.occlusion += (1.0 - dd * px.inverse_radius_squared) * float(bitCount(fresh));
+}
+
+// The cost is add_thick_solid's, per tap and layer (docs/ao-accuracy.md, the
 // thick spiral's cost): the camera rays are affine in the pixel position and
-// are built once per tap, not per layer, and with two sectors the sector is
-// the sign of the azimuth's sine, with no atan.
+// are built once per tap, not per layer; the cell ends are scalar sums of
+// dot products taken once per pixel or tap; the nearest point of each solid
+// is a clamp of one depth per tap; with two sectors the sector is the sign
+// of the azimuth's sine, with no atan.
 float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float radius,
                               float radius_pixels, float threshold, mat2 rotation) {
+  ThickPixel px;
+  px.position = position;
+  px.normal = normal;
   // The sectors turn with the pixel's rotation: a fixed split would line up
   // with the view (towards the camera against away from it) and bias every
   // pixel beside a wall the same way.
   vec3 axis_t = normalize(cross(normal, abs(normal.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
   vec3 axis_b = cross(normal, axis_t);
-  vec3 tangent = rotation[0].x * axis_t + rotation[0].y * axis_b;
-  vec3 bitangent = cross(normal, tangent);
-  float radius_squared = radius * radius;
-  float inverse_radius_squared = 1.0 / radius_squared;
-#if AO_THICK_SECTORS == 2
-  uint mask_lower = 0u, mask_upper = 0u;
-#else
-  uint masks[AO_THICK_SECTORS];
-  for (int k = 0; k < AO_THICK_SECTORS; ++k) masks[k] = 0u;
-#endif
-  float occlusion = 0.0;
-  // Sectors some tap landed in on the buffer: the others (taps off the
-  // guard band, towards the camera next to the bottom edge) are unknown,
-  // not open, and leave the estimate to the sectors that were seen.
-  uint informed = 0u;
-  vec2 pixel_centre = vec2(pixel) + 0.5;
+  px.tangent = rotation[0].x * axis_t + rotation[0].y * axis_b;
+  px.bitangent = cross(normal, px.tangent);
+  px.threshold = threshold;
+  px.radius_squared = radius * radius;
+  px.inverse_radius_squared = 1.0 / px.radius_squared;
   // The camera ray at unit depth through pixel_centre + d is x_ray plus
-  // (d * ray_step, 0) (camera_position_at is affine in the pixel position).
-  vec3 x_ray = camera_position_at(pixel_centre, 1.0, frame.internal_size, frame.camera_ray_scale);
+  // (d * ray_step, 0) (camera_position_at is affine in the pixel position);
+  // X itself is x_ray * depth.
+  vec2 pixel_centre = vec2(pixel) + 0.5;
+  px.x_ray = camera_position_at(pixel_centre, 1.0, frame.internal_size, frame.camera_ray_scale);
   vec2 ray_step = 2.0 * frame.internal_size.zw * frame.camera_ray_scale.xy;
+  px.cell_frame.depth = -position.z;
+  px.cell_frame.x_normal = dot(px.x_ray, normal);
+  px.cell_frame.x_x = dot(px.x_ray, px.x_ray);
+  ThickState state;
+#if AO_THICK_SECTORS == 2
+  state.mask_lower = 0u;
+  state.mask_upper = 0u;
+#else
+  for (int k = 0; k < AO_THICK_SECTORS; ++k) state.masks[k] = 0u;
+#endif
+  state.informed = 0u;
+  state.occlusion = 0.0;
   // Half the radial spacing of the taps within one sector, in alpha.
   float cell = 0.5 * float(AO_THICK_SECTORS) / float(AO_NUM_TAPS);
   for (int i = 0; i < AO_NUM_TAPS; ++i) {
@@ -99,74 +223,32 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     int level;
     vec2 tap_centre;
     if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
-    vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
-    ivec2 source = ivec2(tap_centre);
-    vec2 direction = rotation * AO_TAP_OFFSETS[i] * (radius_pixels / AO_TAP_ALPHAS[i]);
+    // Both layers' front depths (RG) and back faces (BA, linear, 0 = none:
+    // depth_pyramid.comp) in one fetch.
+    vec4 tap_depths = texelFetch(depth_pyramid, texel, level);
+    ThickTap tap;
+    tap.source = ivec2(tap_centre);
     // The tap stands for its sector's radial cell: its surface, taken as
-    // its tangent plane, from alpha - w to alpha + w along its direction.
-    vec3 near_ray = x_ray + vec3(ray_step * direction * max(AO_TAP_ALPHAS[i] - cell, 0.0), 0.0);
-    vec3 far_ray = x_ray + vec3(ray_step * direction * (AO_TAP_ALPHAS[i] + cell), 0.0);
-    vec3 tap_ray = camera_position_at(tap_centre, 1.0, frame.internal_size, frame.camera_ray_scale);
-    for (int layer = 0; layer < AO_LAYERS; ++layer) {
-      float front = layer == 0 ? tap_depths.r : tap_depths.g;
-      if (front <= 0.0) continue;
-      float back_face = texelFetch(backface_depth, ivec3(source, layer), 0).r;
-      float back = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, front) : front + sao.thickness;
-      vec3 front_point = tap_ray * front;
-      vec3 f = front_point - position;
-      vec3 b = tap_ray * back - position;
-      // The front point's azimuth decides the sector.
-#if AO_THICK_SECTORS == 2
-      // atan(y, x) in (-pi, pi] falls in the upper half exactly where y >= 0.
-      bool upper = dot(f, bitangent) >= 0.0;
-      informed |= upper ? 2u : 1u;
-#else
-      // A tap straight above X (f along the normal) has no azimuth; GLSL
-      // leaves atan(0, 0) undefined, so it is taken as 0, as in the mirror.
-      float along_b = dot(f, bitangent), along_t = dot(f, tangent);
-      float azimuth = along_b == 0.0 && along_t == 0.0 ? 0.0 : atan(along_b, along_t);
-      int sector = clamp(int(floor((azimuth * (0.5 / pi) + 0.5) * float(AO_THICK_SECTORS))), 0,
-                         AO_THICK_SECTORS - 1);
-      informed |= 1u << uint(sector);
+    // its tangent plane, from alpha - w to alpha + w along its direction
+    // (pixels per unit alpha).
+    vec2 direction = rotation * (AO_TAP_OFFSETS[i] / AO_TAP_ALPHAS[i]) * radius_pixels;
+    tap.step = vec3(ray_step * direction, 0.0);
+    tap.near_alpha = max(AO_TAP_ALPHAS[i] - cell, 0.0);
+    tap.far_alpha = AO_TAP_ALPHAS[i] + cell;
+    px.cell_frame.step_normal = dot(tap.step, normal);
+    px.cell_frame.step_x = dot(tap.step, px.x_ray);
+    px.cell_frame.step_step = dot(tap.step, tap.step);
+    tap.ray = camera_position_at(tap_centre, 1.0, frame.internal_size, frame.camera_ray_scale);
+    // Each layer's solid is nearest X at the depth along the tap's ray
+    // nearest X, clamped to the solid's segment.
+    tap.nearest_depth = dot(tap.ray, position) / dot(tap.ray, tap.ray);
+    add_thick_solid(state, px, tap, 0, tap_depths.r, tap_depths.b);
+#if AO_LAYERS > 1
+    add_thick_solid(state, px, tap, 1, tap_depths.g, tap_depths.a);
 #endif
-      // The segment's nearest point to X gives the distance of the falloff.
-      vec3 e = b - f;
-      float ee = dot(e, e);
-      vec3 nearest = ee > 0.0 ? f + e * clamp(-dot(f, e) / ee, 0.0, 1.0) : f;
-      float dd = dot(nearest, nearest);
-      float height_f = dot(f, normal), height_b = dot(b, normal);
-      // Beyond the radius, or below X's plane: hides nothing.
-      if (dd >= radius_squared || (height_f <= threshold && height_b <= threshold)) continue;
-      vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(source, layer), 0).xy);
-      float plane_offset = dot(front_point, tap_normal);
-      vec3 near_end = cell_end(near_ray, tap_normal, plane_offset, front) - position;
-      vec3 far_end = cell_end(far_ray, tap_normal, plane_offset, front) - position;
-      float u_f = elevation_u(f, height_f, threshold), u_b = elevation_u(b, height_b, threshold);
-      float u_near = elevation_u(near_end, dot(near_end, normal), threshold);
-      float u_far = elevation_u(far_end, dot(far_end, normal), threshold);
-      // Where the tap's plane meets the camera ray through X behind X, the
-      // tap's surface runs into X's (a crease): it is taken to continue
-      // down to X's plane, and its band to start at the horizon. In front
-      // of X it would be a surface invented in front of X (a silhouette).
-      // That is plane_offset / toward_x >= 1, without the division.
-      float toward_x = dot(position, tap_normal);
-      bool crease = toward_x > 0.0 ? plane_offset >= toward_x : toward_x < 0.0 && plane_offset <= toward_x;
-      int first = crease ? 0 : min(int(min(min(u_f, u_b), min(u_near, u_far)) * 32.0), 31);
-      int last = min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
-      uint bits = bit_range(first, last);
-#if AO_THICK_SECTORS == 2
-      uint fresh = bits & ~(upper ? mask_upper : mask_lower);
-      mask_upper |= upper ? bits : 0u;
-      mask_lower |= upper ? 0u : bits;
-#else
-      uint fresh = bits & ~masks[sector];
-      masks[sector] |= bits;
-#endif
-      occlusion += (1.0 - dd * inverse_radius_squared) * float(bitCount(fresh));
-    }
   }
-  int seen = bitCount(informed);
-  return seen == 0 ? 1.0 : 1.0 - occlusion / float(32 * seen);
+  int seen = bitCount(state.informed);
+  return seen == 0 ? 1.0 : 1.0 - state.occlusion / float(32 * seen);
 }
 
 // The visibility in [0, 1], raised to `intensity`; the footprint threshold

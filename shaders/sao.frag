@@ -32,8 +32,9 @@
 // Bindings are this shader's own; sao_pass.cpp binds the same numbers.
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 0) uniform sampler2DArray gbuffer_normal;
-// March and thick spiral only: per layer, the nearest back face at or behind
-// the stored surface (reversed Z, 0 = none), where that surface's object ends.
+// March only: per layer, the nearest back face at or behind the stored
+// surface (reversed Z, 0 = none), where that surface's object ends. The thick
+// spiral finds the same values in the depth pyramid's B and A.
 layout(binding = 29) uniform sampler2DArray backface_depth;
 
 // sao.thickness, march, thick spiral and bitmask: how deep (m) behind a stored

@@ -16,13 +16,15 @@ std::uint64_t estimate_frame_bytes(const RenderSettings& settings) {
     // Bytes per internal pixel: G-buffer (two layers each of normal RG16F,
     // albedo RGBA8, emissive R11G11B10F, motion RG16F, depth 32F) 40, its
     // reference depth 4, direct light (two layers of RGBA16F) 16, compose 4, depth
-    // pyramid RG32F with its MIP chain 11, SAO R16F 2, blur (two R16F) 4.
+    // pyramid RG32F with its MIP chain 11 (RGBA32F, 22, for the thick spiral),
+    // SAO R16F 2, blur (two R16F) 4.
     // Delay and predict add a third layer to every G-buffer attachment: the
     // prediction's depth (4), and normal, albedo, emissive and motion (4 + 4 +
     // 4 + 8) that layered rendering needs but nothing writes.
     const std::uint64_t prediction_layer =
         generator_predicts_next_frame(settings.generator) ? 4 + 4 + 4 + 4 + 8 : 0;
-    const std::uint64_t per_internal_pixel = 40 + 4 + 16 + 4 + 11 + 2 + 4 + prediction_layer;
+    const std::uint64_t pyramid = settings.ao.method == AoMethod::spiral_thick ? 22 : 11;
+    const std::uint64_t per_internal_pixel = 40 + 4 + 16 + 4 + pyramid + 2 + 4 + prediction_layer;
     // Tonemap RGBA8 and its read-back copy.
     const std::uint64_t per_viewport_pixel = 4 + 4;
     return per_internal_pixel * internal + per_viewport_pixel * viewport + 4 * shadow;

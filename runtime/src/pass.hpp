@@ -23,6 +23,7 @@ namespace deepgi {
 enum class OutputDecode {
     floats,             // the texture's channels as stored (`channels` of R, RG or RGB)
     floats_rg_as_rgb,   // RG floats, written as RGB with blue 0 (motion, depth pyramid)
+    floats_ba_as_rgb,   // BA floats, written as RGB with blue 0 (the pyramid's back faces)
     depth_to_metres,    // reversed-Z depth: near / stored, 0 where nothing was hit
     octahedral_normal,  // RG octahedral unit vector -> xyz, 0 where `mask_depth` is empty
     srgb_to_linear,     // RGBA8 sRGB-encoded -> linear RGB

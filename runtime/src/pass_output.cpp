@@ -60,6 +60,16 @@ FloatImage read_pass_output(const PassOutput& output, float near_plane) {
             }
             break;
         }
+        case OutputDecode::floats_ba_as_rgb: {
+            const auto rgba =
+                gl::read_floats(output.texture, output.level, output.layer, w, h, GL_RGBA, 4);
+            image.pixels.assign(pixels * 3, 0.0f);
+            for (std::size_t i = 0; i < pixels; ++i) {
+                image.pixels[3 * i] = rgba[4 * i + 2];
+                image.pixels[3 * i + 1] = rgba[4 * i + 3];
+            }
+            break;
+        }
         case OutputDecode::depth_to_metres:
             image.channels = 1;
             image.pixels = gl::read_floats(output.texture, output.level, output.layer, w, h,

@@ -42,8 +42,9 @@ public:
     PassDeclaration declaration(const RenderSettings& settings) const override {
         std::vector<PassRead> reads = {{depth_binding, "depth_pyramid"},
                                        {normal_binding, "gbuffer.normal"}};
-        // Only the march and the thick spiral end each solid at its back face.
-        if (ao_method_reads_back_faces(settings.ao.method))
+        // The march ends each solid at its back face; the thick spiral does
+        // too, but reads the back faces from the pyramid (depth_pyramid.comp).
+        if (settings.ao.method == AoMethod::march)
             reads.push_back({backface_binding, "backface.depth"});
         const AoSettings& ao = settings.ao;
         return {.reads = std::move(reads),

@@ -8,7 +8,10 @@
 // unless told otherwise: --ao-method march times the march, whose rays and
 // steps (shared_enums.h) do not follow the tap count. --against M adds a
 // third renderer, two layers with estimator M, to the same alternation, and
-// the ratio of the two estimators' SAO passes (one run, frame by frame).
+// the ratio of the two estimators' SAO passes (one run, frame by frame), and
+// for both the depth pyramid and the passes that read it besides SAO
+// (ao_temporal, radiosity, blur; the thick spiral's pyramid is RGBA32F, the
+// others' RG32F).
 // --ao-slices / --ao-steps set the slice estimators' (gtao, bitmask) counts,
 // which the tap count does not change either. --baseline-shaders DIR times,
 // in place of one layer, the same two-layer estimator built from the shader
@@ -106,8 +109,11 @@ int main(int argc, char** argv) {
             first_column, baseline_loader ? "baseline" : "1",
             against_name.empty()
                 ? ""
-                : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} |", against_name));
-        fmt::print("|---|--:|--:|--:|--:|--:|--:|--:|{}\n", against_name.empty() ? "" : "--:|--:|");
+                : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} | pyramid readers (ms) | {0}: "
+                              "depth pyramid, pyramid readers (ms) |",
+                              against_name));
+        fmt::print("|---|--:|--:|--:|--:|--:|--:|--:|{}\n",
+                   against_name.empty() ? "" : "--:|--:|--:|--:|");
         for (const auto& scene_name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(scene_name);
             for (int n : tap_counts) {
@@ -128,8 +134,17 @@ int main(int argc, char** argv) {
                 const double two_ms = medians[1].at("sao");
                 std::string extra;
                 if (other) {
+                    // What else reads the pyramid, summed: its format may cost them.
+                    auto readers = [](const deepgi::bench::PassMedians& passes) {
+                        double sum = 0.0;
+                        for (const char* pass : {"ao_temporal", "radiosity", "blur"})
+                            sum += passes.count(pass) ? passes.at(pass) : 0.0;
+                        return sum;
+                    };
                     const double other_ms = medians[2].at("sao");
-                    extra = fmt::format(" {:.2f} | {:.2f} |", other_ms, two_ms / other_ms);
+                    extra = fmt::format(" {:.2f} | {:.2f} | {:.2f} | {:.2f}, {:.2f} |", other_ms,
+                                        two_ms / other_ms, readers(medians[1]),
+                                        medians[2].at("depth_pyramid"), readers(medians[2]));
                 }
                 fmt::print("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |{}\n",
                            scene_name, n, tau, one_ms, two_ms, two_ms / one_ms,
