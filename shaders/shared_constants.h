@@ -71,7 +71,7 @@ struct FrameConstants {
   int temporal_frame;    // frames since history was invalidated (0 on the first)
   float temporal_angle;  // rad, 2 pi temporal_sample.x: this frame's extra rotation of the gather patterns
 
-  // xy: this frame's point (u, v) of the R2 sequence in [0, 1)^2 (temporal_sequence.h);
+  // xy: this frame's point (u, v) of the Sobol sequence in [0, 1)^2 (temporal_sequence.h);
   // z: the radiosity taps' radial shift frac(1/2 + v) - 1/2 in [-1/2, 1/2),
   // 0 on the first frame; w: 0.
   vec4 temporal_sample;

@@ -138,10 +138,12 @@ void resize_passes(RendererState& state) {
 
 // This frame's point of the temporal sequence (shaders/temporal_sequence.h),
 // k frames after history was invalidated: (0, 0) on the first frame, then a
-// low-discrepancy walk over [0, 1)^2 that never repeats, so a still camera's
-// running mean keeps receiving new samples of the integral. z is the radial
-// shift of the radiosity spiral's taps, frac(1/2 + v) - 1/2 in [-1/2, 1/2):
-// 0 on the first frame, so a single frame keeps the taps at (i + 1/2) / n.
+// low-discrepancy walk over [0, 1)^2 that never repeats (the Sobol sequence,
+// whose first 16, 64 and 256 frames are each stratified over the square), so
+// a still camera's running mean keeps receiving new samples of the integral.
+// z is the radial shift of the radiosity spiral's taps, frac(1/2 + v) - 1/2
+// in [-1/2, 1/2): 0 on the first frame, so a single frame keeps the taps at
+// (i + 1/2) / n.
 // Taken in fixed point, so it is exact.
 glm::vec4 temporal_sample(std::uint32_t k) {
     constexpr float to_unit = 1.0f / 16777216.0f;  // top 24 bits: exact in float

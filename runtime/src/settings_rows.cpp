@@ -106,7 +106,7 @@ const std::array<NumericSetting, 32> numeric_table = {{
      .label = "temporal offset",
      .group = "frame",
      .owner = "frame",
-     .help = "Index of the temporal R2 sequence on the first frame after history is dropped "
+     .help = "Index of the temporal Sobol sequence on the first frame after history is dropped "
              "(0: the shipped sequence). Another value turns every gather's per-frame "
              "rotation and march offsets to another realisation; the report repeats its rows "
              "with it to measure its own run-to-run spread",

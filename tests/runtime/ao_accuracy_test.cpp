@@ -199,13 +199,14 @@ spiral::test::TargetTable& targets() {
             {"march/atrium/open/first", {4.0, "measured 2 pixels"}},
             {"march/atrium/open/accumulated", {4.0, "measured 2 pixels"}},
             {"march/atrium/open-blurred/first", {6.0, "measured 4 pixels"}},
-            {"march/atrium/open-blurred/accumulated", {5.0, "measured 3 pixels"}},
+            {"march/atrium/open-blurred/accumulated", {8.0, "measured 6 pixels"}},
             {"march/warehouse/open-blurred/accumulated", {3.0, "measured 1 pixel"}},
-            // Since the frames take points of the R2 sequence instead of a
-            // cycle of 8 (angle and step offset advancing together), 9 of
-            // warehouse's 21514 open pixels in open surroundings fall below
-            // 0.99 in the running mean of 9 frames, before the blur.
-            {"march/warehouse/open/accumulated", {11.0, "measured 9 pixels"}},
+            // Since the frames take points of a non-repeating sequence (now
+            // Sobol's) instead of a cycle of 8 (angle and step offset
+            // advancing together), 4 of warehouse's 21514 open pixels in open
+            // surroundings fall below 0.99 in the running mean of 9 frames,
+            // before the blur (9 with the R2 sequence before it).
+            {"march/warehouse/open/accumulated", {6.0, "measured 4 pixels"}},
             // The thick spiral against the stricter targets it was built to
             // (first frame MAE <= .015 and |bias| <= .005, MAE <= .01 after 64
             // still frames): a sector's union of a few taps' bands is too dark
@@ -224,9 +225,6 @@ spiral::test::TargetTable& targets() {
             {"spiral-thick/cornell/mae/first", {0.0353, "measured 0.0321"}},
             {"spiral-thick/cornell/mae/accumulated", {0.0344, "measured 0.0312"}},
             {"spiral-thick/atrium/bias/first", {0.0060, "measured +0.0054"}},
-            // With the R2 sequence, 2 of atrium's open pixels in open
-            // surroundings fall below 0.99 in the running mean, before the blur.
-            {"spiral-thick/atrium/open/accumulated", {4.0, "measured 2 pixels"}},
             {"spiral-thick/warehouse/mae/first", {0.0291, "measured 0.0264"}},
             {"spiral-thick/warehouse/bias/first", {0.0165, "measured +0.0150"}},
             {"spiral-thick/warehouse/mae/accumulated", {0.0278, "measured 0.0253"}},
@@ -265,8 +263,7 @@ spiral::test::TargetTable& targets() {
             {"bitmask/ref-bench/two-vs-one/first", {2.21e-05, "measured 2.01e-05"}},
             {"bitmask/ref-bench/layer-1-gain/first", {0.000572, "measured 0.00052"}},
             {"bitmask/ref-bench/bias/accumulated", {0.0212, "measured 0.0193"}},
-            {"bitmask/ref-bench/two-vs-one/accumulated", {0.000107, "measured 9.75e-05"}},
-            {"bitmask/ref-bench/layer-1-gain/accumulated", {0.000657, "measured 0.000598"}},
+            {"bitmask/ref-bench/layer-1-gain/accumulated", {0.00054, "measured 0.000489"}},
             {"gtao/cornell/mae/first", {0.0638, "measured 0.058"}},
             {"gtao/cornell/bias/first", {0.0539, "measured 0.049"}},
             {"gtao/cornell/two-vs-one/first", {0.000867, "measured 0.000788"}},
@@ -278,9 +275,14 @@ spiral::test::TargetTable& targets() {
             {"bitmask/cornell/two-vs-one/first", {0.000628, "measured 0.000571"}},
             {"bitmask/cornell/mae/accumulated", {0.0475, "measured 0.0432"}},
             {"bitmask/cornell/bias/accumulated", {0.0357, "measured 0.0324"}},
-            {"bitmask/cornell/two-vs-one/accumulated", {0.000525, "measured 0.000477"}},
+            {"bitmask/cornell/two-vs-one/accumulated", {0.00045, "measured 0.000409"}},
+            // One of cornell's open pixels in open surroundings falls below
+            // 0.99 in the slice estimators' running mean of 9 frames, before
+            // the blur, since the frames take the Sobol sequence (none with R2).
+            {"gtao/cornell/open/accumulated", {3.0, "measured 1 pixel"}},
+            {"bitmask/cornell/open/accumulated", {3.0, "measured 1 pixel"}},
             {"gtao/atrium/two-vs-one/first", {2.29e-05, "measured 2.08e-05"}},
-            {"gtao/atrium/two-vs-one/accumulated", {2.63e-05, "measured 2.39e-05"}},
+            {"gtao/atrium/two-vs-one/accumulated", {4.8e-05, "measured 4.37e-05"}},
             {"gtao/warehouse/mae/first", {0.0374, "measured 0.034"}},
             {"gtao/warehouse/bias/first", {0.019, "measured 0.0173"}},
             {"gtao/warehouse/mae/accumulated", {0.0372, "measured 0.0338"}},

@@ -97,28 +97,28 @@ spiral::test::TargetTable& targets() {
         // ref-crease; docs/radiosity.md, "Where the error against the visible
         // truth comes from"). The whole truth's misses are the light no layer
         // holds (taps past the guard band) and the crease's pixels.
-        {{"area/ref-crease/relative abs(bias)/8 frames", {0.066, "measured 0.060"}},
-         {"area/ref-board/relative abs(bias)/8 frames", {0.098, "measured 0.089"}},
-         {"area/ref-crease/relative MAE/8 frames", {0.16, "measured 0.144"}},
-         {"area/ref-board/relative MAE/8 frames", {0.2, "measured 0.182"}},
+        {{"area/ref-crease/relative abs(bias)/8 frames", {0.066, "measured 0.0598"}},
+         {"area/ref-board/relative abs(bias)/8 frames", {0.101, "measured 0.0919"}},
+         {"area/ref-crease/relative MAE/8 frames", {0.155, "measured 0.141"}},
+         {"area/ref-board/relative MAE/8 frames", {0.19, "measured 0.172"}},
          // Against the visible truth ref-crease's bias meets the target (0.045,
          // a hard check); its MAE is the noise of 8 frames (0.073 after 120).
-         // ref-board keeps 0.061, not attributed.
-         {"area/ref-crease/relative MAE, visible truth/8 frames", {0.155, "measured 0.139"}},
-         {"area/ref-board/relative abs(bias), visible truth/8 frames", {0.067, "measured 0.061"}},
-         {"area/ref-board/relative MAE, visible truth/8 frames", {0.186, "measured 0.167"}},
+         // ref-board keeps 0.064, not attributed.
+         {"area/ref-crease/relative MAE, visible truth/8 frames", {0.15, "measured 0.136"}},
+         {"area/ref-board/relative abs(bias), visible truth/8 frames", {0.070, "measured 0.0638"}},
+         {"area/ref-board/relative MAE, visible truth/8 frames", {0.173, "measured 0.157"}},
          // The blue banner (x = -4, seen obliquely): with two layers the
-         // floor before it turns away from blue (tint 1 layer -0.047, 2
-         // layers -0.111 at 192x108), and so does the ray-traced visible
+         // floor before it turns away from blue (tint 1 layer -0.033, 2
+         // layers -0.100 at 192x108), and so does the ray-traced visible
          // truth (E0 0.032, E0 + E1 -0.071): what layer 1 holds there
          // lights that floor with colours away from blue. The target asks
          // what the truth does not; the hard check below follows the truth.
-         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.06, "measured 0.054"}},
-         // Magenta and red leaned toward their banners by under 1e-3 with
-         // fixed radii; with the radial shift they lean away by as little:
-         // a difference at the level of 8 frames' noise.
-         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0020"}},
-         {"atrium/banner 4/floor tint, 1 layer - 2 layers/8 frames", {0.003, "measured 0.0004"}}});
+         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.073, "measured 0.067"}},
+         // Magenta leaned toward its banner by under 1e-3 with fixed radii;
+         // with the radial shift it leans away by as little: a difference
+         // at the level of 8 frames' noise. (Red, banner 4, did too with the
+         // R2 sequence; with the Sobol sequence it meets the target.)
+         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0025"}}});
     return table;
 }
 

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 
@@ -272,32 +273,39 @@ TEST_CASE("reflection: the hidden sculpture is reflected with two layers and not
 }
 
 TEST_CASE("reflection: the jitter advances by the frame sequence's v every frame", "[reflection]") {
-    // The step of R2's second coordinate, from its definition
-    // (shaders/temporal_sequence.h): 1 / g^2, g the plastic number, the real
-    // root of g^3 = g + 1; not from the shared header.
-    double g = 1.3;
-    for (int i = 0; i < 60; ++i) g = std::cbrt(g + 1.0);
-    const float v_step = float(1.0 / (g * g));
+    // The frame sequence's v (shaders/temporal_sequence.h) is Sobol's second
+    // dimension, from its definition and not from the shared header: v_k is
+    // the xor of the direction numbers of k's bits, 1/2, 3/4, ... (columns of
+    // Pascal's triangle mod 2), so v_0 = 0, v_1 = 1/2, v_2 = 3/4 and the
+    // jitter steps by 1/2, then by 1/4 (mod 1).
+    const std::array<float, 2> v_steps = {0.5f, 0.25f};
     HeadlessContext context;
     const Scene scene = make_builtin_scene("gallery");
     Renderer renderer(scene, gallery_settings(2), ShaderLoader::from_build_configuration());
     renderer.render(scene.default_camera);
-    const FloatImage first = renderer.read_pass_output("reflection-jitter");
+    std::array<FloatImage, 3> jitter;
+    jitter[0] = renderer.read_pass_output("reflection-jitter");
     const FloatImage hit = renderer.read_pass_output("reflection-hit");
-    renderer.render(scene.default_camera);
-    const FloatImage second = renderer.read_pass_output("reflection-jitter");
-    int mirrors = 0, advanced = 0;
+    for (int frame = 1; frame < 3; ++frame) {
+        renderer.render(scene.default_camera);
+        jitter[std::size_t(frame)] = renderer.read_pass_output("reflection-jitter");
+    }
+    int mirrors = 0;
+    std::array<int, 2> advanced = {0, 0};
     for (int y = 0; y < hit.height; ++y) {
         for (int x = 0; x < hit.width; ++x) {
             if (hit.at(x, y, 2) < -1.5f) continue;
             ++mirrors;
-            float step = second.at(x, y) - first.at(x, y);
-            step -= std::floor(step);
-            if (std::abs(step - v_step) < 1e-4f) ++advanced;
+            for (std::size_t i = 0; i < 2; ++i) {
+                float step = jitter[i + 1].at(x, y) - jitter[i].at(x, y);
+                step -= std::floor(step);
+                if (std::abs(step - v_steps[i]) < 1e-4f) ++advanced[i];
+            }
         }
     }
     REQUIRE(mirrors > 0);
-    CHECK(advanced == mirrors);
+    CHECK(advanced[0] == mirrors);
+    CHECK(advanced[1] == mirrors);
 }
 
 TEST_CASE(

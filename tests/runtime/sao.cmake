@@ -13,6 +13,7 @@ add_executable(deepgi_sao_tests
   depth_pyramid_test.cpp
   blur_test.cpp
   pixel_rotation_test.cpp
+  temporal_sequence_test.cpp
   antialias_test.cpp
   ao_march_beam_test.cpp
 )
@@ -31,7 +32,7 @@ target_compile_definitions(deepgi_sao_tests PRIVATE
 # One ctest entry per Catch tag, so ctest -j spreads them over the cores.
 # (catch_discover_tests cannot carry two labels: Catch2 v2 splices the
 # properties unquoted.)
-foreach(tag reference thick march pyramid blur rotation robustness compose antialias)
+foreach(tag reference thick march pyramid blur rotation sequence robustness compose antialias)
   add_test(NAME deepgi_sao_${tag} COMMAND deepgi_sao_tests "[${tag}]")
   set_tests_properties(deepgi_sao_${tag} PROPERTIES LABELS "runtime;sao" TIMEOUT 300)
 endforeach()

@@ -223,7 +223,7 @@ struct ReportOptions {
 // Throws deepgi::InputError naming the first invalid option.
 void validate(const ReportOptions& options);
 
-// The temporal offset of repeat r: whole disjoint stretches of the R2
+// The temporal offset of repeat r: whole disjoint stretches of the Sobol
 // sequence, each as long as the frames a row renders after its cut
 // (max(9, 1 + warmup + frames)), so no two repeats share a frame's sample.
 int repeat_offset(const ReportOptions& options, int repeat);

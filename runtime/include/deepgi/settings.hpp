@@ -278,7 +278,7 @@ struct RenderSettings {
     int shadow_map_size = 2048;
     int antialias = 1;  // 1: the anti-aliasing pass filters the final image; 0: off
     // The temporal sequence's index on the first frame after history is
-    // dropped (frame.cpp): frame k after it uses R2 point temporal_offset + k.
+    // dropped (frame.cpp): frame k after it uses Sobol point temporal_offset + k.
     // 0 is the shipped sequence; the report repeats rows with other offsets
     // to measure its run-to-run spread (docs/report.md).
     int temporal_offset = 0;

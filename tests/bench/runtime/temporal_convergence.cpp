@@ -83,12 +83,20 @@ int main(int argc, char** argv) {
     std::vector<int> counts{16, 64};
     int converged_frames = deepgi::convergence::default_converged_frames;
     int converged_taps = deepgi::convergence::default_converged_taps;
+    // Another realisation of the same renderer, for the run-to-run spread
+    // (docs/radiosity.md, "How fast a still camera converges").
+    int rotation_seed = 0;
+    int temporal_offset = 0;
     CLI::App app{"temporal_convergence: still-camera E and AO against the converged image"};
     deepgi::bench::add_options(app, options);
     app.add_option("--frames-list", counts, "still frame counts at which to measure")
         ->delimiter(',');
     app.add_option("--converged-frames", converged_frames, "frames of the converged image");
     app.add_option("--converged-taps", converged_taps, "radiosity taps of the converged image");
+    app.add_option("--rotation-seed", rotation_seed,
+                   "per-pixel rotation field (the renderer's rotation-seed setting)");
+    app.add_option("--temporal-offset", temporal_offset,
+                   "first point of the frame sequence (the renderer's temporal-offset setting)");
     std::string maps;
     bool check_running_mean = false;
     app.add_option("--maps", maps,
@@ -103,7 +111,9 @@ int main(int argc, char** argv) {
             if (n < 1) throw deepgi::InputError("--frames-list: counts must be >= 1");
         if (converged_frames < 1) throw deepgi::InputError("--converged-frames must be >= 1");
         if (converged_taps < 1) throw deepgi::InputError("--converged-taps must be >= 1");
-        const deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
+        deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
+        settings.rotation_seed = rotation_seed;
+        settings.temporal_offset = temporal_offset;
         deepgi::validate(settings);
         deepgi::HeadlessContext context;
         // The measurement renders the counts in order, from one renderer.
