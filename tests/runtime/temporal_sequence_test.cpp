@@ -93,7 +93,7 @@ TEST_CASE("sequence: the frame sample is the Sobol sequence, computed apart from
 }
 
 TEST_CASE(
-    "sequence: every aligned run of 2^m frames, m <= 8, is a (0, m, 2)-net; the R2 sequence it "
+    "sequence: every aligned run of 2^m frames, m <= 8, is a (0, m, 2)-net, and the R2 sequence it "
     "replaced is not",
     "[sequence]") {
     const auto u = [](std::uint32_t k) { return shared::temporal_sequence_u_fixed(k); };

@@ -133,12 +133,14 @@ TEST_CASE("window: mouse-look, held keys and a resize give the camera a headless
         mean += std::abs(window_final.pixels[i] - headless_final.pixels[i]);
     mean /= double(window_final.pixels.size());
     // The stated tolerance for the moved view, in levels of 255 of the
-    // displayed image (measured on llvmpipe: largest 34, 1.85% of the
-    // channels above 8, mean 1.0): no channel off by more than 48, at most 4%
-    // off by more than 8, a mean difference of at most 2.
+    // displayed image (measured on llvmpipe with the Sobol frame sequence:
+    // largest 51, 1.86% of the channels above 8, mean 0.99; with R2 before
+    // it 34, 1.85% and 1.0: the one largest channel is the noisiest of the
+    // three figures): no channel off by more than 72, at most 4% off by
+    // more than 8, a mean difference of at most 2.
     INFO("largest difference " << largest * 255.0f << " of 255; share above 8: " << above_8
                                << "; mean " << mean * 255.0);
-    CHECK(largest <= 48.0f / 255.0f);
+    CHECK(largest <= 72.0f / 255.0f);
     CHECK(above_8 <= 0.04);
     CHECK(mean * 255.0 <= 2.0);
 
