@@ -121,21 +121,18 @@ public:
 
     std::vector<PassOutput> outputs(const FrameResources&) const override {
         std::vector<PassOutput> list;
-        for (int level = 0; level < levels_; ++level)
-            list.push_back({.name = fmt::format("depth_pyramid-level{}", level),
-                            .texture = pyramid_.get(),
-                            .level = level,
-                            .width = level_extent(width_, level),
-                            .height = level_extent(height_, level),
-                            .decode = OutputDecode::floats_rg_as_rgb});
+        const auto add_levels = [&](const char* prefix, OutputDecode decode) {
+            for (int level = 0; level < levels_; ++level)
+                list.push_back({.name = fmt::format("{}-level{}", prefix, level),
+                                .texture = pyramid_.get(),
+                                .level = level,
+                                .width = level_extent(width_, level),
+                                .height = level_extent(height_, level),
+                                .decode = decode});
+        };
+        add_levels("depth_pyramid", OutputDecode::floats_rg_as_rgb);
         // The thick spiral's back faces (B, A), in metres like the depths.
-        for (int level = 0; back_faces_ && level < levels_; ++level)
-            list.push_back({.name = fmt::format("depth_pyramid-backface-level{}", level),
-                            .texture = pyramid_.get(),
-                            .level = level,
-                            .width = level_extent(width_, level),
-                            .height = level_extent(height_, level),
-                            .decode = OutputDecode::floats_ba_as_rgb});
+        if (back_faces_) add_levels("depth_pyramid-backface", OutputDecode::floats_ba_as_rgb);
         return list;
     }
 
