@@ -80,10 +80,16 @@ void validate(const ReportOptions& options) {
 
 int repeat_offset(const ReportOptions& options, int repeat) {
     // 9: the static frames after a cut that the accumulated columns need
-    // (kAccumulatedFrames in measure.cpp).
-    // At the option limits (16 repeats, 2001 frames) this stays far below
-    // limits::max_temporal_offset.
-    return std::max(9, 1 + options.warmup + options.frames) * repeat;
+    // (kAccumulatedFrames in measure.cpp). Rounded up to a power of two, so
+    // that every repeat starts the Sobol sequence where a run of that many
+    // frames is a net again (temporal_sequence.h): repeat r's frames are
+    // stratified as repeat 0's are, instead of straddling two runs.
+    // At the option limits (16 repeats, 2001 frames: 2048 per repeat) this
+    // stays far below limits::max_temporal_offset.
+    const int frames = std::max(9, 1 + options.warmup + options.frames);
+    int stride = 1;
+    while (stride < frames) stride *= 2;
+    return stride * repeat;
 }
 
 int repeat_rotation_seed(int repeat) {

@@ -110,6 +110,30 @@ TEST_CASE("report: error statistics match a hand computation", "[report]") {
     CHECK_THROWS(report::compare_images(estimate, truth, {1}));
 }
 
+TEST_CASE(
+    "report: each repeat starts the temporal sequence at the smallest power of two "
+    "that holds its frames",
+    "[report]") {
+    // A run of 2^m Sobol frames is a net only from a multiple of 2^m on, so a
+    // repeat that started anywhere else would be stratified worse than
+    // repeat 0 and widen the spread the summary compares with.
+    for (int warmup : {0, 1, 3, 20}) {
+        for (int frames : {1, 2, 7, 8, 15, 16, 100, 2001}) {
+            report::ReportOptions options;
+            options.warmup = warmup;
+            options.frames = frames;
+            const int needed = std::max(9, 1 + warmup + frames);
+            const int stride = report::repeat_offset(options, 1);
+            CAPTURE(warmup, frames, stride);
+            CHECK((stride & (stride - 1)) == 0);
+            CHECK(stride >= needed);
+            CHECK(stride / 2 < needed);
+            CHECK(report::repeat_offset(options, 0) == 0);
+            CHECK(report::repeat_offset(options, 15) == 15 * stride);
+        }
+    }
+}
+
 TEST_CASE("report: patterns nest by denominator and follow the golden angle", "[report]") {
     for (int n : {8, 11, 16, 32}) {
         // p / 2m includes every p / m, so each finer optimum is at least as good.
@@ -201,13 +225,14 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
             method + "/" + fields[1] + "/" + fields[2] + "/" + fields[3];
         combinations.insert(combination);
         const int offset = std::stoi(fields[column.at("temporal_offset")]);
-        // repeat_offset: 9 frames per repeat at --warmup 0 --frames 1.
-        CHECK((offset == 0 || offset == 9));
-        CHECK(report::repeat_offset(options, offset / 9) == offset);
+        // repeat_offset: the 9 frames a repeat needs at --warmup 0 --frames 1,
+        // rounded up to the power of two 16 where a Sobol net starts.
+        CHECK((offset == 0 || offset == 16));
+        CHECK(report::repeat_offset(options, offset / 16) == offset);
         // The repeat's per-pixel rotation field: repeat 0 the shipped one.
         CHECK(std::stoi(fields[column.at("rotation_seed")]) ==
-              report::repeat_rotation_seed(offset / 9));
-        CHECK(report::repeat_rotation_seed(offset / 9) == offset / 9);
+              report::repeat_rotation_seed(offset / 16));
+        CHECK(report::repeat_rotation_seed(offset / 16) == offset / 16);
         repeat_error[combination][offset] = std::stod(fields[column.at("ref_raw_mae")]);
         const int taps = std::stoi(fields[2]);
         // The march gathers no taps, so it has no converged AO to compare with.
@@ -270,7 +295,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (const auto& [combination, errors] : repeat_error) {
         INFO(combination);
         REQUIRE(errors.size() == 2);
-        CHECK(errors.at(0) != errors.at(9));
+        CHECK(errors.at(0) != errors.at(16));
     }
     for (const char* expected :
          {"solid-angle/optimal/4/1", "solid-angle/optimal/4/2", "solid-angle/optimal/32/1",
