@@ -28,6 +28,13 @@ namespace {
 
 constexpr int width = 192, height = 108;
 
+// The targets are about the estimator's accuracy, so its error is read after
+// 64 still frames, where the temporal filter has averaged most of the
+// per-frame noise away: after 8 frames that noise was most of the MAE
+// (ref-crease against the visible truth 0.136 after 8, 0.070 after 64),
+// while the bias moved by under 0.003.
+constexpr int accuracy_frames = 64;
+
 RenderSettings accuracy_settings(RadiosityMethod method) {
     RenderSettings settings;
     settings.width = width;
@@ -77,7 +84,7 @@ Error measure(const FloatImage& estimate, const FloatImage& raster_depth,
 
 // The targets of the area estimator (docs/radiosity.md, "Accuracy against the
 // ray tracer"), relative to the truth's mean: |bias| <= 5%, MAE <= 10%. Both
-// are missed today; the regression bounds below are taken from the measured
+// are missed on ref-board; the regression bounds below are taken from the measured
 // values (about 10% above them), not targets. The table goes to
 // radiosity-accuracy-targets.md, printed by the ctest entry
 // "deepgi_radiosity_accuracy_targets_missed" (support/targets.hpp).
@@ -88,8 +95,9 @@ spiral::test::TargetTable& targets() {
     // 11-pixel guard band (the 1 m radius spans about 60 pixels here), on
     // ref-board the wall 15 cm behind the board (nearer than the 0.5 m layer
     // separation), and the weight clamp of patches seen at a grazing angle;
-    // all make E low. The MAE is mostly the per-pixel noise of 19 taps x 8
-    // rotations; the truth's own 2% per pixel averages out over these pixels.
+    // all make E low. What MAE remains after 64 frames is mostly that bias
+    // and the crease's pixels; the truth's own 2% per pixel averages out
+    // over these pixels.
     static spiral::test::TargetTable table(
         "radiosity-accuracy-targets.md",
         // Measured with the direct light stored as RGBA16F (it was
@@ -97,16 +105,15 @@ spiral::test::TargetTable& targets() {
         // ref-crease; docs/radiosity.md, "Where the error against the visible
         // truth comes from"). The whole truth's misses are the light no layer
         // holds (taps past the guard band) and the crease's pixels.
-        {{"area/ref-crease/relative abs(bias)/8 frames", {0.066, "measured 0.0598"}},
-         {"area/ref-board/relative abs(bias)/8 frames", {0.101, "measured 0.0919"}},
-         {"area/ref-crease/relative MAE/8 frames", {0.155, "measured 0.141"}},
-         {"area/ref-board/relative MAE/8 frames", {0.19, "measured 0.172"}},
-         // Against the visible truth ref-crease's bias meets the target (0.045,
-         // a hard check); its MAE is the noise of 8 frames (0.073 after 120).
-         // ref-board keeps 0.064, not attributed.
-         {"area/ref-crease/relative MAE, visible truth/8 frames", {0.15, "measured 0.136"}},
-         {"area/ref-board/relative abs(bias), visible truth/8 frames", {0.070, "measured 0.0638"}},
-         {"area/ref-board/relative MAE, visible truth/8 frames", {0.173, "measured 0.157"}},
+        // Measured after 64 still frames (accuracy_frames). Met there and hard
+        // checks: ref-crease's MAE against both truths (0.082, 0.070) and its
+        // bias against the visible truth (0.043).
+        {{"area/ref-crease/relative abs(bias)/64 frames", {0.064, "measured 0.0577"}},
+         {"area/ref-board/relative abs(bias)/64 frames", {0.099, "measured 0.0903"}},
+         {"area/ref-board/relative MAE/64 frames", {0.139, "measured 0.126"}},
+         // ref-board keeps 0.062 against the visible truth, not attributed.
+         {"area/ref-board/relative abs(bias), visible truth/64 frames", {0.069, "measured 0.0622"}},
+         {"area/ref-board/relative MAE, visible truth/64 frames", {0.113, "measured 0.103"}},
          // The blue banner (x = -4, seen obliquely): with two layers the
          // floor before it turns away from blue (tint 1 layer -0.033, 2
          // layers -0.100 at 192x108), and so does the ray-traced visible
@@ -117,7 +124,9 @@ spiral::test::TargetTable& targets() {
          // Magenta leaned toward its banner by under 1e-3 with fixed radii;
          // with the radial shift it leans away by as little: a difference
          // at the level of 8 frames' noise. (Red, banner 4, did too with the
-         // R2 sequence; with the Sobol sequence it meets the target.)
+         // R2 sequence; with the Sobol sequence it meets the target after 8
+         // frames and leans away by 4e-4 after 64: the truth itself moves by
+         // 0.001 there, so red's target is at the level of noise too.)
          {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0025"}}});
     return table;
 }
@@ -155,8 +164,8 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     for (const RadiosityMethod method : {RadiosityMethod::area, RadiosityMethod::published}) {
         const RenderSettings settings = accuracy_settings(method);
         Renderer renderer(scene, settings, loader);
-        // Eight still frames: the filtered E is the mean of their 8 gathers.
-        for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
+        // Still frames: the filtered E is the mean of their gathers.
+        for (int frame = 0; frame < accuracy_frames; ++frame) renderer.render(scene.default_camera);
         const FloatImage e = renderer.read_pass_output("radiosity-irradiance-layer0");
         const FloatImage depth = renderer.read_pass_output("gbuffer-depth-layer0");
         const int guard = frame_layout(settings).guard;
@@ -172,16 +181,16 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
               << published.mae << " bias " << published.bias);
     REQUIRE(area.pixels > width * height / 4);
     REQUIRE(area.truth_mean > 0.01);
-    targets().check_at_most("area/" + name, "relative abs(bias)", "8 frames",
+    targets().check_at_most("area/" + name, "relative abs(bias)", "64 frames",
                             std::abs(area.bias) / area.truth_mean, bias_target);
-    targets().check_at_most("area/" + name, "relative MAE", "8 frames", area.mae / area.truth_mean,
+    targets().check_at_most("area/" + name, "relative MAE", "64 frames", area.mae / area.truth_mean,
                             mae_target);
     INFO("against the visible truth: mean " << area_visible.truth_mean << ", MAE "
                                             << area_visible.mae << ", bias " << area_visible.bias);
     REQUIRE(area_visible.truth_mean > 0.01);
-    targets().check_at_most("area/" + name, "relative abs(bias), visible truth", "8 frames",
+    targets().check_at_most("area/" + name, "relative abs(bias), visible truth", "64 frames",
                             std::abs(area_visible.bias) / area_visible.truth_mean, bias_target);
-    targets().check_at_most("area/" + name, "relative MAE, visible truth", "8 frames",
+    targets().check_at_most("area/" + name, "relative MAE, visible truth", "64 frames",
                             area_visible.mae / area_visible.truth_mean, mae_target);
     targets().write();
     // The published normalisation is far off on the same pixels (measured
