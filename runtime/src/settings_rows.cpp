@@ -281,12 +281,14 @@ const std::array<NumericSetting, 32> numeric_table = {{
      .label = "tap clamp",
      .group = "radiosity",
      .owner = "radiosity",
-     .help = "Deep radiosity: largest contribution of one sample, per channel",
+     .help = "Deep radiosity: largest contribution of one sample, per channel (at most 5000, "
+             "so that the raw irradiance stays finite in half floats)",
      .minimum = 0.0f,
      .minimum_inclusive = false,
-     .maximum = unlimited,
+     // 4 pi x 5000 = 62832, under the largest half float (65504).
+     .maximum = 5000.0f,
      .slider_min = 0.1f,
-     .slider_max = 100.0f,
+     .slider_max = 5000.0f,
      .logarithmic = true,
      DEEPGI_FLOAT_FIELD(radiosity.tap_clamp)},
     {.name = "rho-prop",
