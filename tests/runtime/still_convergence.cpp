@@ -141,6 +141,7 @@ StillConvergence measure_still_convergence(const Scene& scene, const RenderSetti
         Renderer dense(scene, settings, test::loader_with_override(folder.path()));
         for (int i = 0; i < converged_frames; ++i) dense.render(scene.default_camera);
         converged = read_images(dense, w, h);
+        if (observer.converged_renderer) observer.converged_renderer(dense);
         guides = {viewport_of(dense.read_pass_output("gbuffer-depth-layer0"), w, h),
                   viewport_of(dense.read_pass_output("gbuffer-normal-layer0"), w, h),
                   viewport_of(dense.read_pass_output("gbuffer-albedo-layer0"), w, h)};

@@ -57,6 +57,8 @@ struct StillConvergence {
 struct StillObserver {
     // Once, with the converged image's blurred AO and layer 0's depth.
     std::function<void(const FloatImage& converged_ao, const FloatImage& depth)> converged;
+    // Once, with the renderer of the converged image after its last frame.
+    std::function<void(const Renderer& dense)> converged_renderer;
     // After each still frame of the measured renderer.
     std::function<void(const Renderer&)> frame;
     // At each frame count, with the image's blurred AO.

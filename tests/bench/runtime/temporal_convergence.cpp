@@ -4,7 +4,8 @@
 // measurement and its figures are tests/runtime/still_convergence.hpp's,
 // shared with the ctest that checks the targets.
 // --maps DIR writes where the AO error sits (docs/deep-sao.md, "How fast the
-// march converges"); --check-running-mean checks that no history was lost.
+// march converges") and the E images that scripts/e_error_where.py reads;
+// --check-running-mean checks that no history was lost.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -44,6 +45,21 @@ void write_error_map(const std::filesystem::path& path, const FloatImage& ao,
         if (depth.pixels[p] <= 0.0f) rgba[4 * p + 2] = 96;  // sky: dark blue
     }
     deepgi::write_png(path, depth.width, depth.height, rgba);
+}
+
+// --maps: the blurred E and layer 0's filtered E before the blur, as PFM
+// (`{scene}-e-{tag}.pfm`, `{scene}-e-unblurred-{tag}.pfm`), for finding
+// where E's error sits (docs/radiosity.md, "Where cornell's error after 16
+// frames sits").
+void write_e_images(const std::filesystem::path& folder, const std::string& scene,
+                    const std::string& tag, const deepgi::Renderer& renderer, int width,
+                    int height) {
+    using deepgi::convergence::viewport_of;
+    deepgi::write_pfm(folder / fmt::format("{}-e-{}.pfm", scene, tag),
+                      viewport_of(renderer.read_pass_output("radiosity-blurred"), width, height));
+    deepgi::write_pfm(
+        folder / fmt::format("{}-e-unblurred-{}.pfm", scene, tag),
+        viewport_of(renderer.read_pass_output("radiosity-irradiance-layer0"), width, height));
 }
 
 // --check-running-mean: for a still camera the filtered AO (`ao-temporal`,
@@ -100,8 +116,9 @@ int main(int argc, char** argv) {
     std::string maps;
     bool check_running_mean = false;
     app.add_option("--maps", maps,
-                   "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5) and the "
-                   "blurred, raw and converged AO as PFM");
+                   "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5), the "
+                   "blurred, raw and converged AO, the blurred, unblurred and converged E, depth "
+                   "and normals as PFM");
     app.add_flag("--check-running-mean", check_running_mean,
                  "check that the filtered AO is the mean of the raw frames (a readback a frame)");
     CLI11_PARSE(app, argc, argv);
@@ -137,6 +154,14 @@ int main(int argc, char** argv) {
                     deepgi::write_pfm(folder / fmt::format("{}-ao-converged.pfm", name), ao);
                     deepgi::write_pfm(folder / fmt::format("{}-depth.pfm", name), d);
                 };
+            if (!maps.empty())
+                observer.converged_renderer = [&](const deepgi::Renderer& dense) {
+                    write_e_images(folder, name, "converged", dense, options.width, options.height);
+                    deepgi::write_pfm(folder / fmt::format("{}-normal.pfm", name),
+                                      deepgi::convergence::viewport_of(
+                                          dense.read_pass_output("gbuffer-normal-layer0"),
+                                          options.width, options.height));
+                };
             if (check_running_mean)
                 observer.frame = [&](const deepgi::Renderer& renderer) {
                     add_raw_ao(renderer, raw_sum);
@@ -149,6 +174,8 @@ int main(int argc, char** argv) {
                     write_error_map(folder / fmt::format("{}-ao-error-{}.png", name, n), ao,
                                     converged_ao, depth);
                     deepgi::write_pfm(folder / fmt::format("{}-ao-{}.pfm", name, n), ao);
+                    write_e_images(folder, name, std::to_string(n), renderer, options.width,
+                                   options.height);
                     deepgi::write_pfm(
                         folder / fmt::format("{}-ao-raw-{}.pfm", name, n),
                         deepgi::convergence::viewport_of(renderer.read_pass_output("ao-raw"),
