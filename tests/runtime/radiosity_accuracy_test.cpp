@@ -108,12 +108,29 @@ spiral::test::TargetTable& targets() {
         // Measured after 64 still frames (accuracy_frames). Met there and hard
         // checks: ref-crease's MAE against both truths (0.082, 0.070) and its
         // bias against the visible truth (0.043).
-        {{"area/ref-crease/relative abs(bias)/64 frames", {0.064, "measured 0.0577"}},
-         {"area/ref-board/relative abs(bias)/64 frames", {0.099, "measured 0.0903"}},
-         {"area/ref-board/relative MAE/64 frames", {0.139, "measured 0.126"}},
-         // ref-board keeps 0.062 against the visible truth, not attributed.
-         {"area/ref-board/relative abs(bias), visible truth/64 frames", {0.069, "measured 0.0622"}},
-         {"area/ref-board/relative MAE, visible truth/64 frames", {0.113, "measured 0.103"}},
+        {{"area/ref-crease/relative abs(bias)/64 frames", {0.064, "measured 0.0561"}},
+         {"area/ref-board/relative abs(bias)/64 frames", {0.099, "measured 0.0891"}},
+         {"area/ref-board/relative MAE/64 frames", {0.139, "measured 0.128"}},
+         // ref-board keeps 0.061 against the visible truth at 1 m: half of it
+         // is the surface within the radius in 3D but outside the screen disk
+         // the taps sweep (docs/radiosity.md, "Where the error against the
+         // visible truth comes from").
+         {"area/ref-board/relative abs(bias), visible truth/64 frames", {0.069, "measured 0.0609"}},
+         {"area/ref-board/relative MAE, visible truth/64 frames", {0.113, "measured 0.104"}},
+         // With the scene's own lengths (a 17-unit radius) 40% (ref-crease)
+         // and 52% (ref-board) of the whole truth comes from surfaces no
+         // layer holds, which no gather over the layers can find
+         // (docs/radiosity.md, "Against the light the layers hold"); the
+         // bias against the visible truth meets the target there (0.014,
+         // 0.008; hard checks), its MAE does not (not attributed).
+         {"area/ref-crease, lengths auto/relative abs(bias)/64 frames", {0.45, "measured 0.409"}},
+         {"area/ref-crease, lengths auto/relative MAE/64 frames", {0.474, "measured 0.431"}},
+         {"area/ref-crease, lengths auto/relative MAE, visible truth/64 frames",
+          {0.132, "measured 0.120"}},
+         {"area/ref-board, lengths auto/relative abs(bias)/64 frames", {0.578, "measured 0.525"}},
+         {"area/ref-board, lengths auto/relative MAE/64 frames", {0.592, "measured 0.538"}},
+         {"area/ref-board, lengths auto/relative MAE, visible truth/64 frames",
+          {0.128, "measured 0.116"}},
          // The blue banner (x = -4, seen obliquely): with two layers the
          // floor before it turns away from blue (tint 1 layer -0.033, 2
          // layers -0.100 at 192x108), and so does the ray-traced visible
@@ -135,10 +152,22 @@ spiral::test::TargetTable& targets() {
 
 TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradiance's mean",
           "[radiosity-accuracy]") {
-    const auto name = GENERATE(as<std::string>{}, "ref-crease", "ref-board");
-    const Scene scene = load_scene(name);
+    const auto scene_name = GENERATE(as<std::string>{}, "ref-crease", "ref-board");
+    // The library's 1 m lengths, and the lengths deepgi derives from the
+    // scene by default (docs/deepgi.md, "Scene scale": a radius of 17 scene
+    // units on these scenes), where the heavy tail of the area weight is
+    // longest (docs/radiosity.md, "The clamp").
+    const bool auto_lengths = GENERATE(false, true);
+    const std::string name = scene_name + (auto_lengths ? ", lengths auto" : "");
+    const Scene scene = load_scene(scene_name);
+    const auto settings_for = [&](RadiosityMethod method) {
+        RenderSettings settings = accuracy_settings(method);
+        if (!auto_lengths) return settings;
+        settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
+        return resolve_auto_lengths(settings, scene_bounding_radius(scene));
+    };
     ReferenceSettings reference;
-    reference.render = accuracy_settings(RadiosityMethod::area);
+    reference.render = settings_for(RadiosityMethod::area);
     reference.ambient_visibility = false;
     reference.irradiance = true;
     reference.radiosity_radius = reference.render.radiosity.radius;
@@ -162,7 +191,7 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     Error errors[2];
     Error area_visible;
     for (const RadiosityMethod method : {RadiosityMethod::area, RadiosityMethod::published}) {
-        const RenderSettings settings = accuracy_settings(method);
+        const RenderSettings settings = settings_for(method);
         Renderer renderer(scene, settings, loader);
         // Still frames: the filtered E is the mean of their gathers.
         for (int frame = 0; frame < accuracy_frames; ++frame) renderer.render(scene.default_camera);
@@ -194,8 +223,10 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
                             area_visible.mae / area_visible.truth_mean, mae_target);
     targets().write();
     // The published normalisation is far off on the same pixels (measured
-    // +300%), so the bounds above tell the estimators apart.
-    CHECK(published.bias > 0.5 * area.truth_mean);
+    // +300% at 1 m), so the bounds above tell the estimators apart. With the
+    // scene's lengths half the whole truth lies beyond the layers, which
+    // hides its excess there (+25%): the check is the 1 m case's.
+    if (!auto_lengths) CHECK(published.bias > 0.5 * area.truth_mean);
 }
 
 namespace {
