@@ -33,7 +33,7 @@ uint sector_bits(float lo, float hi) {
 // sectors its solid hides, the half circle starting at `start`. A function
 // called once per layer, not a loop over the layers: llvmpipe runs a loop
 // over the layers as a loop, each select on the layer at run time
-// (docs/ao-accuracy.md, the solid angle's cost).
+// (docs/ao-accuracy.md, "One call per layer in every estimator").
 uint bitmask_sample(AoSlice slice, ivec2 at, float z, float start, vec3 position, vec3 normal,
                     float radius_squared, float footprint_bias) {
   if (z <= 0.0) return 0u;

@@ -19,7 +19,7 @@
 // One layer's sample at pixel `at` (linear depth z, 0 = nothing): raises
 // its side's horizon. A function called once per layer, not a loop over the
 // layers: llvmpipe runs a loop over the layers as a loop, each select on the
-// layer at run time (docs/ao-accuracy.md, the solid angle's cost).
+// layer at run time (docs/ao-accuracy.md, "One call per layer in every estimator").
 void gtao_sample(AoSlice slice, ivec2 at, float z, float side, vec3 position, vec3 normal, float radius_squared,
                  float footprint_bias, inout float low, inout float high) {
   if (z <= 0.0) return;

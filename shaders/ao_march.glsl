@@ -25,7 +25,7 @@
 // this layer stores at p, else -1. A function called once per layer with a
 // constant layer, not a loop over the layers: llvmpipe runs a loop over the
 // layers as a loop, each select on the layer at run time
-// (docs/ao-accuracy.md, the march's cost).
+// (docs/ao-accuracy.md, "One call per layer in every estimator").
 //
 // A step's point q, projected to pixel p, is inside when it lies
 //   - behind the depth stored at p: the plane alone is not enough, as the

@@ -48,7 +48,7 @@ float solid_angle_term(vec3 v, vec3 normal, vec3 tap_position, vec3 tap_normal, 
 // One layer's term of one tap (0 where the layer stores nothing there). A
 // function called once per layer with a constant layer, not a loop over the
 // layers: llvmpipe runs a loop over the layers as a loop, each select on the
-// layer at run time (docs/ao-accuracy.md, the solid angle's cost).
+// layer at run time (docs/ao-accuracy.md, "One call per layer in every estimator").
 float solid_angle_layer(float tap_depth, int layer, vec2 tap_centre, ivec2 source, float depth, vec3 position,
                         vec3 normal, float radius_squared, float footprint_bias, float alpha) {
   if (tap_depth <= 0.0) return 0.0;
