@@ -29,6 +29,22 @@ uint sector_bits(float lo, float hi) {
   return (count == bitmask_sectors ? 0xffffffffu : ((1u << uint(count)) - 1u)) << uint(first);
 }
 
+// One layer's sample at pixel `at` (linear depth z, 0 = nothing): the
+// sectors its solid hides, the half circle starting at `start`. A function
+// called once per layer, not a loop over the layers: llvmpipe runs a loop
+// over the layers as a loop, each select on the layer at run time
+// (docs/ao-accuracy.md, "One call per layer in every estimator").
+uint bitmask_sample(AoSlice slice, ivec2 at, float z, float start, vec3 position, vec3 normal,
+                    float radius_squared, float footprint_bias) {
+  if (z <= 0.0) return 0u;
+  vec3 front = camera_position_at(vec2(at) + 0.5, z, frame.internal_size, frame.camera_ray_scale);
+  vec3 w = front - position;
+  if (dot(w, w) >= radius_squared || dot(w, normal) <= footprint_bias) return 0u;
+  float a = slice_angle(slice, w);
+  float b = slice_angle(slice, w + normalize(front) * sao.thickness);
+  return sector_bits((min(a, b) - start) / pi, (max(a, b) - start) / pi);
+}
+
 // The visibility in [0, 1], raised to `intensity`.
 float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float radius,
                     float radius_pixels, float bias, float footprint_bias, float intensity,
@@ -48,16 +64,10 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
         ivec2 at;
         if (!slice_sample(slice, pixel, side, k, jitter, radius_pixels, at)) continue;
         vec2 depths = texelFetch(depth_pyramid, at, 0).rg;
-        for (int layer = 0; layer < AO_LAYERS; ++layer) {
-          float z = layer == 0 ? depths.r : depths.g;
-          if (z <= 0.0) continue;
-          vec3 front = camera_position_at(vec2(at) + 0.5, z, frame.internal_size, frame.camera_ray_scale);
-          vec3 w = front - position;
-          if (dot(w, w) >= radius_squared || dot(w, normal) <= footprint_bias) continue;
-          float a = slice_angle(slice, w);
-          float b = slice_angle(slice, w + normalize(front) * sao.thickness);
-          occupied |= sector_bits((min(a, b) - start) / pi, (max(a, b) - start) / pi);
-        }
+        occupied |= bitmask_sample(slice, at, depths.r, start, position, normal, radius_squared, footprint_bias);
+#if AO_LAYERS > 1
+        occupied |= bitmask_sample(slice, at, depths.g, start, position, normal, radius_squared, footprint_bias);
+#endif
       }
     }
     // The open measure less that of each run of set bits: a run costs two

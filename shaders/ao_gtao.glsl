@@ -16,6 +16,20 @@
 // surface gives exactly 1 whatever the number of slices; the integral over
 // all slice angles is the same with or without the division.
 
+// One layer's sample at pixel `at` (linear depth z, 0 = nothing): raises
+// its side's horizon. A function called once per layer, not a loop over the
+// layers: llvmpipe runs a loop over the layers as a loop, each select on the
+// layer at run time (docs/ao-accuracy.md, "One call per layer in every estimator").
+void gtao_sample(AoSlice slice, ivec2 at, float z, float side, vec3 position, vec3 normal, float radius_squared,
+                 float footprint_bias, inout float low, inout float high) {
+  if (z <= 0.0) return;
+  vec3 w = camera_position_at(vec2(at) + 0.5, z, frame.internal_size, frame.camera_ray_scale) - position;
+  if (dot(w, w) >= radius_squared || dot(w, normal) <= footprint_bias) return;
+  float theta = slice_angle(slice, w);
+  if (side > 0.0) high = min(high, theta);
+  else low = max(low, theta);
+}
+
 // The visibility in [0, 1], raised to `intensity`.
 float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float radius,
                     float radius_pixels, float bias, float footprint_bias, float intensity,
@@ -35,15 +49,10 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
         ivec2 at;
         if (!slice_sample(slice, pixel, side, k, jitter, radius_pixels, at)) continue;
         vec2 depths = texelFetch(depth_pyramid, at, 0).rg;
-        for (int layer = 0; layer < AO_LAYERS; ++layer) {
-          float z = layer == 0 ? depths.r : depths.g;
-          if (z <= 0.0) continue;
-          vec3 w = camera_position_at(vec2(at) + 0.5, z, frame.internal_size, frame.camera_ray_scale) - position;
-          if (dot(w, w) >= radius_squared || dot(w, normal) <= footprint_bias) continue;
-          float theta = slice_angle(slice, w);
-          if (side > 0.0) high = min(high, theta);
-          else low = max(low, theta);
-        }
+        gtao_sample(slice, at, depths.r, side, position, normal, radius_squared, footprint_bias, low, high);
+#if AO_LAYERS > 1
+        gtao_sample(slice, at, depths.g, side, position, normal, radius_squared, footprint_bias, low, high);
+#endif
       }
     }
     high = max(high, low);

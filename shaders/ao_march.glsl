@@ -19,6 +19,13 @@
 // camera's sight through a surface) was measured here and lost far more
 // occlusion under slabs, boards and shelves than it freed (docs/deep-sao.md,
 // "The two steps' allowance").
+
+// One layer's test of one step: the hit distance along the ray if the
+// step's point q (at t, linear depth z) is inside the solid of the surface
+// this layer stores at p, else -1. A function called once per layer with a
+// constant layer, not a loop over the layers: llvmpipe runs a loop over the
+// layers as a loop, each select on the layer at run time
+// (docs/ao-accuracy.md, "One call per layer in every estimator").
 //
 // A step's point q, projected to pixel p, is inside when it lies
 //   - behind the depth stored at p: the plane alone is not enough, as the
@@ -28,15 +35,29 @@
 //     of depth, the reconstruction error of a stored point and its normal,
 //     so that a ray leaving X's own surface at a grazing angle does not hit it.
 // The hit distance is where the last segment crosses that plane.
-//
-// Rays: Malley's method on the golden-angle (Vogel) disk, ray i at radius
-// sqrt((i + 1/2) / R) and angle 2 pi frac(i / phi), turned by the pixel's
-// rotation. Steps: evenly spaced over r, offset by one random fraction per
-// pixel plus the second coordinate of this frame's temporal sample
-// (temporal_sequence.h), so a still camera's frames fill the step positions
-// evenly, independently of the angle (the first coordinate).
-// Every ray contributes at most 1/R: the value is in [0, 1], with no heavy
-// tail for the blur to spread.
+float march_layer_hit(float depth, int layer, ivec2 p, vec3 q, float z, float t, float previous, vec3 position,
+                      vec3 direction, float step_length, float bias) {
+  if (depth <= 0.0 || z <= depth) return -1.0;
+  float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
+  float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
+                                    : depth + sao.thickness;
+  if (z >= solid_end) return -1.0;
+  vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
+  float below = dot(q - surface, surface_normal);
+  if (below >= -(bias + 1.0e-3 * z)) return -1.0;
+  float above = dot(position + direction * previous - surface, surface_normal);
+  return above > 0.0 ? previous + (t - previous) * above / (above - below) : t;
+}
+
+// The rays through both layers. Rays: Malley's method on the golden-angle
+// (Vogel) disk, ray i at radius sqrt((i + 1/2) / R) and angle
+// 2 pi frac(i / phi), turned by the pixel's rotation. Steps: evenly spaced
+// over r, offset by one random fraction per pixel plus the second coordinate
+// of this frame's temporal sample (temporal_sequence.h), so a still camera's
+// frames fill the step positions evenly, independently of the angle (the
+// first coordinate). Every ray contributes at most 1/R: the value is in
+// [0, 1], with no heavy tail for the blur to spread.
 float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, float bias,
                        mat2 rotation) {
   // Any tangent frame will do: the rotation randomises the pattern anyway.
@@ -61,20 +82,10 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
       if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) break;
       ivec2 p = ivec2(at);
       vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
-      for (int layer = 0; layer < AO_LAYERS && hit < 0.0; ++layer) {
-        float depth = layer == 0 ? depths.r : depths.g;
-        if (depth <= 0.0 || z <= depth) continue;
-        float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
-        float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
-                                          : depth + sao.thickness;
-        if (z >= solid_end) continue;
-        vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-        vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
-        float below = dot(q - surface, surface_normal);
-        if (below >= -(bias + 1.0e-3 * z)) continue;
-        float above = dot(position + direction * previous - surface, surface_normal);
-        hit = above > 0.0 ? previous + (t - previous) * above / (above - below) : t;
-      }
+      hit = march_layer_hit(depths.r, 0, p, q, z, t, previous, position, direction, step_length, bias);
+#if AO_LAYERS > 1
+      if (hit < 0.0) hit = march_layer_hit(depths.g, 1, p, q, z, t, previous, position, direction, step_length, bias);
+#endif
       previous = t;
     }
     if (hit >= 0.0) occlusion += max(0.0, 1.0 - hit * hit / (radius * radius));

@@ -45,6 +45,20 @@ float solid_angle_term(vec3 v, vec3 normal, vec3 tap_position, vec3 tap_normal, 
   return alpha * depth_ratio_squared * cos_phi * (1.0 - vv / radius_squared) * cos_x * cos_y / (vv * cos_view);
 }
 
+// One layer's term of one tap (0 where the layer stores nothing there). A
+// function called once per layer with a constant layer, not a loop over the
+// layers: llvmpipe runs a loop over the layers as a loop, each select on the
+// layer at run time (docs/ao-accuracy.md, "One call per layer in every estimator").
+float solid_angle_layer(float tap_depth, int layer, vec2 tap_centre, ivec2 source, float depth, vec3 position,
+                        vec3 normal, float radius_squared, float footprint_bias, float alpha) {
+  if (tap_depth <= 0.0) return 0.0;
+  vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(source, layer), 0).xy);
+  float ratio = tap_depth / depth;
+  return max(0.0, solid_angle_term(y - position, normal, y, tap_normal, radius_squared, footprint_bias,
+                                   ratio * ratio, alpha));
+}
+
 // The visibility, signed (at most 1), raised to `intensity` where positive.
 float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float radius,
                     float radius_pixels, float bias, float footprint_bias, float intensity,
@@ -57,17 +71,13 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
     vec2 tap_centre;
     if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
-    float occlusion = 0.0;
     ivec2 source = ivec2(tap_centre);
-    for (int layer = 0; layer < AO_LAYERS; ++layer) {
-      float tap_depth = layer == 0 ? tap_depths.r : tap_depths.g;
-      if (tap_depth <= 0.0) continue;
-      vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
-      vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(source, layer), 0).xy);
-      float ratio = tap_depth / depth;
-      occlusion = max(occlusion, solid_angle_term(y - position, normal, y, tap_normal, radius_squared,
-                                                  footprint_bias, ratio * ratio, AO_TAP_ALPHAS[i]));
-    }
+    float occlusion = solid_angle_layer(tap_depths.r, 0, tap_centre, source, depth, position, normal,
+                                        radius_squared, footprint_bias, AO_TAP_ALPHAS[i]);
+#if AO_LAYERS > 1
+    occlusion = max(occlusion, solid_angle_layer(tap_depths.g, 1, tap_centre, source, depth, position, normal,
+                                                 radius_squared, footprint_bias, AO_TAP_ALPHAS[i]));
+#endif
     sum += occlusion;
   }
   // Signed: the estimate of 1 - O is unbiased, but next to a crease its
