@@ -15,15 +15,7 @@ import argparse
 
 import numpy as np
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        channels = 3 if f.readline().strip() == b"PF" else 1
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.fromfile(f, dtype="<f4" if scale < 0 else ">f4")
-    # PFM rows run bottom to top; row 0 here is the image's top.
-    return np.flipud(data.reshape(height, width, channels))
+from report_plots.data import read_pfm
 
 
 def grow(mask, r):
@@ -61,7 +53,7 @@ def main():
     parser.add_argument("--scene", default="cornell")
     parser.add_argument("--frames", type=int, default=16)
     args = parser.parse_args()
-    load = lambda tag: read_pfm(f"{args.dir}/{args.scene}-{tag}.pfm")
+    load = lambda tag: read_pfm(f"{args.dir}/{args.scene}-{tag}.pfm", all_channels=True)
     depth = load("depth")[..., 0]
     normal = load("normal")
     surface = depth > 0

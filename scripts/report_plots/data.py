@@ -50,7 +50,9 @@ def read_rows(path):
         return rows
 
 
-def read_pfm(path):
+def read_pfm(path, all_channels=False):
+    """A PFM as a numpy array, row 0 the image's top: its first channel
+    (height x width), or every channel (height x width x channels)."""
     import numpy as np
 
     with open(path, "rb") as f:
@@ -59,7 +61,9 @@ def read_pfm(path):
         scale = float(f.readline())
         channels = 3 if kind == b"PF" else 1
         data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    image = data.reshape(height, width, channels)[:, :, 0]
+    image = data.reshape(height, width, channels)
+    if not all_channels:
+        image = image[:, :, 0]
     return np.flipud(image)  # PFM rows run bottom to top
 
 
