@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -87,9 +88,7 @@ int repeat_offset(const ReportOptions& options, int repeat) {
     // At the option limits (16 repeats, 2001 frames: 2048 per repeat) this
     // stays far below limits::max_temporal_offset.
     const int frames = std::max(9, 1 + options.warmup + options.frames);
-    int stride = 1;
-    while (stride < frames) stride *= 2;
-    return stride * repeat;
+    return int(std::bit_ceil(unsigned(frames))) * repeat;
 }
 
 int repeat_rotation_seed(int repeat) {
