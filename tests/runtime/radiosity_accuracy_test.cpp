@@ -46,6 +46,14 @@ RenderSettings accuracy_settings(RadiosityMethod method) {
     return settings;
 }
 
+// The same with the scene's lengths as deepgi picks them by default
+// (docs/deepgi.md, "Scene scale"): radii and minimum separation derived from
+// the scene's bounding radius.
+RenderSettings with_scene_lengths(RenderSettings settings, const Scene& scene) {
+    settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
+    return resolve_auto_lengths(settings, scene_bounding_radius(scene));
+}
+
 struct Error {
     double truth_mean = 0.0;
     double mae = 0.0;   // mean absolute error over pixels and channels
@@ -156,10 +164,8 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
     const std::string name = scene_name + (auto_lengths ? ", lengths auto" : "");
     const Scene scene = load_scene(scene_name);
     const auto settings_for = [&](RadiosityMethod method) {
-        RenderSettings settings = accuracy_settings(method);
-        if (!auto_lengths) return settings;
-        settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
-        return resolve_auto_lengths(settings, scene_bounding_radius(scene));
+        const RenderSettings settings = accuracy_settings(method);
+        return auto_lengths ? with_scene_lengths(settings, scene) : settings;
     };
     ReferenceSettings reference;
     reference.render = settings_for(RadiosityMethod::area);
@@ -350,12 +356,11 @@ TEST_CASE("radiosity accuracy: atrium's banners tint the floor before them more 
     std::array<int, 5> counts[2];
     FloatImage depth_layer0;
     for (const int layers : {1, 2}) {
-        RenderSettings settings = accuracy_settings(RadiosityMethod::area);
+        // The scene's lengths: a 1 m radius projects to a few pixels at the
+        // banners.
+        RenderSettings settings =
+            with_scene_lengths(accuracy_settings(RadiosityMethod::area), scene);
         settings.radiosity.layers = layers;
-        // The scene's lengths as deepgi picks them (docs/deepgi.md, "Scene
-        // scale"): a 1 m radius projects to a few pixels at the banners.
-        settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
-        settings = resolve_auto_lengths(settings, scene_bounding_radius(scene));
         Renderer renderer(scene, settings, loader);
         for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
         depth_layer0 = renderer.read_pass_output("gbuffer-depth-layer0");
@@ -365,10 +370,8 @@ TEST_CASE("radiosity accuracy: atrium's banners tint the floor before them more 
     }
     // What the layers hold says how the tint should move: the visible
     // truth's tint with one layer (E0) and with two (E0 + E1).
-    RenderSettings truth_settings = accuracy_settings(RadiosityMethod::area);
-    truth_settings.radiosity.radius = truth_settings.min_separation = truth_settings.ao.radius =
-        auto_length;
-    truth_settings = resolve_auto_lengths(truth_settings, scene_bounding_radius(scene));
+    const RenderSettings truth_settings =
+        with_scene_lengths(accuracy_settings(RadiosityMethod::area), scene);
     const VisibleTint truth = banner_visible_tint(scene, depth_layer0, truth_settings);
     for (int i = 0; i < 5; ++i) {
         const auto k = std::size_t(i);
