@@ -22,6 +22,9 @@ void add_options(CLI::App& app, Options& options) {
     app.add_option("--timing", options.timing,
                    "cpu (CPU clock around glFinish, for llvmpipe) or gpu (GL timer queries)")
         ->capture_default_str();
+    app.add_option("--set", options.set,
+                   "NAME=VALUE: any numeric setting by the renderer's option name (deepgi "
+                   "--help), e.g. blur-extent=0; repeatable");
 }
 
 void finish(Options& options) {
@@ -34,6 +37,18 @@ void finish(Options& options) {
     options.timing_mode = parse_timing_mode("--timing", options.timing);
     if (options.timing_mode == TimingMode::automatic)
         throw InputError("--timing must be cpu or gpu: a benchmark says which clock it used");
+    options.set_values.clear();
+    for (const std::string& assignment : options.set) {
+        const std::size_t equals = assignment.find('=');
+        if (equals == std::string::npos)
+            throw InputError(fmt::format("--set must be NAME=VALUE, got '{}'", assignment));
+        const std::string name = assignment.substr(0, equals);
+        const NumericSetting* row = find_numeric_setting(name);
+        if (row == nullptr)
+            throw InputError(fmt::format("--set: no setting named '{}' (deepgi --help)", name));
+        options.set_values.emplace_back(
+            row, parse_setting_value(*row, std::string_view(assignment).substr(equals + 1)));
+    }
 }
 
 RenderSettings settings_for(const Options& options) {
@@ -41,6 +56,7 @@ RenderSettings settings_for(const Options& options) {
     settings.width = options.width;
     settings.height = options.height;
     settings.timing = options.timing_mode;
+    for (const auto& [row, value] : options.set_values) row->set(settings, value);
     return settings;
 }
 
@@ -73,12 +89,19 @@ std::vector<PassMedians> time_alternated(const std::vector<Configuration>& confi
     return medians;
 }
 
+std::string set_settings_note(const Options& options) {
+    std::string note;
+    for (const auto& [row, value] : options.set_values)
+        note += fmt::format(" | {} = {}", row->name, value);
+    return note;
+}
+
 std::string measured_on(const Renderer& renderer, const Options& options) {
     const ContextInfo info = query_context_info();
     return fmt::format(
-        "device: {} ({}) | {}x{} | median of {} frames after {} warm-up frames", info.renderer,
+        "device: {} ({}) | {}x{} | median of {} frames after {} warm-up frames{}", info.renderer,
         renderer.timing_uses_cpu_clock() ? "CPU clock around glFinish" : "GL timer queries",
-        options.width, options.height, options.frames, options.warmup);
+        options.width, options.height, options.frames, options.warmup, set_settings_note(options));
 }
 
 int run(std::string_view name, const std::function<int()>& body) {

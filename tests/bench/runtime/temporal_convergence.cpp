@@ -103,7 +103,6 @@ int main(int argc, char** argv) {
     // (docs/radiosity.md, "How fast a still camera converges").
     int rotation_seed = 0;
     int temporal_offset = 0;
-    float radiosity_clamp = deepgi::RadiositySettings{}.tap_clamp;
     CLI::App app{"temporal_convergence: still-camera E and AO against the converged image"};
     deepgi::bench::add_options(app, options);
     app.add_option("--frames-list", counts, "still frame counts at which to measure")
@@ -114,9 +113,6 @@ int main(int argc, char** argv) {
                    "per-pixel rotation field (the renderer's rotation-seed setting)");
     app.add_option("--temporal-offset", temporal_offset,
                    "first point of the frame sequence (the renderer's temporal-offset setting)");
-    app.add_option("--radiosity-clamp", radiosity_clamp,
-                   "the radiosity gather's per-sample clamp, in the image and the converged image "
-                   "(the renderer's radiosity-clamp setting)");
     std::string maps;
     bool check_running_mean = false;
     app.add_option("--maps", maps,
@@ -135,7 +131,6 @@ int main(int argc, char** argv) {
         deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
         settings.rotation_seed = rotation_seed;
         settings.temporal_offset = temporal_offset;
-        settings.radiosity.tap_clamp = radiosity_clamp;
         deepgi::validate(settings);
         deepgi::HeadlessContext context;
         // The measurement renders the counts in order, from one renderer.
@@ -201,9 +196,9 @@ int main(int argc, char** argv) {
             }
             fmt::print("<!-- {}: {} flat pixels of {} -->\n", name, run.flat_pixels, run.pixels);
         }
-        fmt::print("\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{}\n",
+        fmt::print("\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{}{}\n",
                    converged_taps, converged_frames, deepgi::query_context_info().renderer,
-                   options.width, options.height);
+                   options.width, options.height, deepgi::bench::set_settings_note(options));
         return 0;
     });
 }

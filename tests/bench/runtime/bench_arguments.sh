@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The benchmarks' shared flags (bench_harness.cpp): a value they cannot take
+# gives exactly one line on stderr that starts with the benchmark's name and
+# names the problem, nothing on stdout, and exit status 2, before any frame
+# is rendered.
+# Usage: bench_arguments.sh FOLDER_OF_THE_BENCHMARKS
+set -u
+benches=$1
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+failures=0
+
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+# bad BENCH TEXT ARGS...: exit 2, empty stdout, one stderr line that starts
+# with "BENCH: error:" and holds TEXT.
+bad() {
+  local bench=$1 text=$2
+  shift 2
+  "$benches/$bench" "$@" > "$scratch/out" 2> "$scratch/err"
+  local status=$?
+  local lines
+  lines=$(wc -l < "$scratch/err")
+  local what="$bench $*"
+  [ "$status" -eq 2 ] || fail "$what: exit $status, not 2"
+  [ -s "$scratch/out" ] && fail "$what: wrote to stdout: $(head -c 200 "$scratch/out")"
+  [ "$lines" -eq 1 ] || fail "$what: $lines lines on stderr: $(cat "$scratch/err")"
+  grep -q "^$bench: error: " "$scratch/err" || fail "$what: stderr does not start with the benchmark's name: $(cat "$scratch/err")"
+  grep -qF -- "$text" "$scratch/err" || fail "$what: stderr does not name '$text': $(cat "$scratch/err")"
+}
+
+for bench in temporal_convergence sao_bench radiosity_bench; do
+  bad $bench "--set must be NAME=VALUE, got 'blur-extent'" --scenes cornell --set blur-extent
+  bad $bench "no setting named 'radiosity-clamps'" --scenes cornell --set radiosity-clamps=16
+  bad $bench "--radiosity-clamp must be" --scenes cornell --set radiosity-clamp=6000
+  bad $bench "--blur-extent must be" --scenes cornell --set blur-extent=-1
+  bad $bench "--size" --scenes cornell --size 0x0
+done
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures failures"
+  exit 1
+fi
+echo "bench arguments: all checks passed"
