@@ -2,6 +2,7 @@
 // 5.6; docs/deep-sao.md, "The thick spiral"). Included by sao.frag where
 // AO_METHOD is DEEPGI_AO_METHOD_SPIRAL_THICK; reads what sao.frag declares
 // (the depth pyramid, which carries the back-face depths for this estimator,
+// both layers' encoded normals side by side (normal_pair.frag),
 // the generated taps of ao_taps.glsl).
 //
 // Every stored surface is the front of a solid that reaches back along its
@@ -118,12 +119,12 @@ struct ThickState {
 };
 
 // One layer's solid of one tap, from its front depth to its back face
-// (linear, 0 = none: sao.thickness deep), into the hemisphere. A function
-// called once per layer with a constant layer, not a loop over the layers:
-// llvmpipe runs a loop over the layers as a loop, each select on the layer
-// at run time.
-void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, int layer, float front,
-                     float back_face) {
+// (linear, 0 = none: sao.thickness deep), with its surface's encoded normal,
+// into the hemisphere. A function called once per layer, not a loop over
+// the layers: llvmpipe runs a loop over the layers as a loop, each select on
+// the layer at run time.
+void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float front, float back_face,
+                     vec2 encoded_normal) {
   if (front <= 0.0) return;
   float back = back_face > 0.0 ? max(back_face, front) : front + sao.thickness;
   vec3 front_point = tap.ray * front;
@@ -149,7 +150,7 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, int la
   float height_f = dot(f, px.normal), height_b = dot(b, px.normal);
   // Beyond the radius, or below X's plane: hides nothing.
   if (dd >= px.radius_squared || (height_f <= px.threshold && height_b <= px.threshold)) return;
-  vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(tap.source, layer), 0).xy);
+  vec3 tap_normal = decode_normal(encoded_normal);
   float plane_offset = dot(front_point, tap_normal);
   float x_along = dot(px.x_ray, tap_normal), step_along = dot(tap.step, tap_normal);
   float u_f = elevation_u(dot(f, f), height_f, px.threshold);
@@ -181,8 +182,9 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, int la
 // thick spiral's cost): the camera rays are affine in the pixel position and
 // are built once per tap, not per layer; the cell ends are scalar sums of
 // dot products taken once per pixel or tap; the nearest point of each solid
-// is a clamp of one depth per tap; with two sectors the sector is the sign
-// of the azimuth's sine, with no atan.
+// is a clamp of one depth per tap; one fetch gives both layers' normals (the
+// G-buffer's two layers, one fetch each, were more than a third of the pass);
+// with two sectors the sector is the sign of the azimuth's sine, with no atan.
 float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float radius,
                               float radius_pixels, float threshold, mat2 rotation) {
   ThickPixel px;
@@ -242,9 +244,12 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     // Each layer's solid is nearest X at the depth along the tap's ray
     // nearest X, clamped to the solid's segment.
     tap.nearest_depth = dot(tap.ray, position) / dot(tap.ray, tap.ray);
-    add_thick_solid(state, px, tap, 0, tap_depths.r, tap_depths.b);
+    // Both layers' encoded normals at the tap's source pixel in one fetch
+    // (normal_pair.frag copies them from the G-buffer's two layers).
+    vec4 tap_normals = texelFetch(normal_pair, tap.source, 0);
+    add_thick_solid(state, px, tap, tap_depths.r, tap_depths.b, tap_normals.xy);
 #if AO_LAYERS > 1
-    add_thick_solid(state, px, tap, 1, tap_depths.g, tap_depths.a);
+    add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw);
 #endif
   }
   int seen = bitCount(state.informed);

@@ -1,5 +1,6 @@
-// The thick spiral's sector count and its convergence as its taps grow
-// (docs/deep-sao.md, "The thick spiral").
+// The thick spiral's sector count, its convergence as its taps grow, and the
+// copy of both layers' normals its taps read (docs/deep-sao.md, "The thick
+// spiral").
 #include "ao_thick_sectors.h"
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
@@ -7,6 +8,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -130,6 +135,52 @@ TEST_CASE("sao thick: the estimate converges on the inside corner as its taps gr
     WARN("thick spiral on the corner, MAE / bias: N = 8 "
          << n8.mae << " / " << n8.bias << ", N = 16 " << n16.mae << " / " << n16.bias << ", N = 32 "
          << n32.mae << " / " << n32.bias);
+}
+
+// Oracle: the G-buffer's own normal dumps (decoded on the CPU by the dump
+// code) against the octahedral decoding, written here from its definition, of
+// the pair the normal pair pass copies (normal_pair.frag): the thick spiral
+// reads its taps' normals from that copy in place of the G-buffer's two
+// layers, so each must decode to the G-buffer's normal at that pixel.
+TEST_CASE("sao thick: the normal pair holds both layers' G-buffer normals", "[thick]") {
+    HeadlessContext context;
+    const Scene scene = make_builtin_scene("cornell");
+    RenderSettings settings = small_settings(161, 91);
+    settings.ao.method = AoMethod::spiral_thick;
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    renderer.render(scene.default_camera);
+    const auto decode = [](float x, float y) {
+        float n[3] = {x, y, 1.0f - std::abs(x) - std::abs(y)};
+        const float t = std::max(-n[2], 0.0f);
+        n[0] += n[0] >= 0.0f ? -t : t;
+        n[1] += n[1] >= 0.0f ? -t : t;
+        const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        return std::array<float, 3>{n[0] / length, n[1] / length, n[2] / length};
+    };
+    for (int layer = 0; layer < 2; ++layer) {
+        const FloatImage pair =
+            renderer.read_pass_output(fmt::format("normal_pair-layer{}", layer));
+        const FloatImage expected =
+            renderer.read_pass_output(fmt::format("gbuffer-normal-layer{}", layer));
+        REQUIRE(pair.width == expected.width);
+        REQUIRE(pair.height == expected.height);
+        int surfaces = 0, mismatches = 0;
+        for (int y = 0; y < expected.height; ++y) {
+            for (int x = 0; x < expected.width; ++x) {
+                // The dump leaves pixels with no surface at 0.
+                if (expected.at(x, y, 0) == 0.0f && expected.at(x, y, 1) == 0.0f &&
+                    expected.at(x, y, 2) == 0.0f)
+                    continue;
+                ++surfaces;
+                const auto n = decode(pair.at(x, y, 0), pair.at(x, y, 1));
+                for (int c = 0; c < 3; ++c)
+                    mismatches += std::abs(n[std::size_t(c)] - expected.at(x, y, c)) > 1e-6f;
+            }
+        }
+        INFO("layer " << layer);
+        CHECK(mismatches == 0);
+        CHECK(surfaces > 100);  // or the comparison would check nothing
+    }
 }
 
 }  // namespace deepgi::test

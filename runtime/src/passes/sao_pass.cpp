@@ -20,6 +20,7 @@ namespace {
 constexpr GLuint normal_binding = 0;
 constexpr GLuint depth_binding = 10;
 constexpr GLuint backface_binding = 29;
+constexpr GLuint normal_pair_binding = 11;
 
 // The define that builds one estimator: its include (sao.frag) and layers.
 std::string program_defines(const SaoProgram& program) {
@@ -46,6 +47,10 @@ public:
         // too, but reads the back faces from the pyramid (depth_pyramid.comp).
         if (settings.ao.method == AoMethod::march)
             reads.push_back({backface_binding, "backface.depth"});
+        // The thick spiral reads its taps' normals, both layers at once,
+        // from the normal pair pass (normal_pair.frag).
+        if (settings.ao.method == AoMethod::spiral_thick)
+            reads.push_back({normal_pair_binding, "normal_pair"});
         const AoSettings& ao = settings.ao;
         return {.reads = std::move(reads),
                 .writes = {"ao.raw"},

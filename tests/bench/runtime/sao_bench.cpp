@@ -11,7 +11,8 @@
 // the ratio of the two estimators' SAO passes (one run, frame by frame), and
 // for both the depth pyramid and the passes that read it besides SAO
 // (ao_temporal, radiosity, blur; the thick spiral's pyramid is RGBA32F, the
-// others' RG32F).
+// others' RG32F), and the normal pair pass that runs for the thick spiral
+// only, with the ratio of SAO plus it to the other's SAO.
 // --ao-slices / --ao-steps set the slice estimators' (gtao, bitmask) counts,
 // which the tap count does not change either. --baseline-shaders DIR times,
 // in place of one layer, the same two-layer estimator built from the shader
@@ -109,11 +110,12 @@ int main(int argc, char** argv) {
             first_column, baseline_loader ? "baseline" : "1",
             against_name.empty()
                 ? ""
-                : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} | pyramid readers (ms) | {0}: "
+                : fmt::format(" {0}, 2 layers (ms) | 2 layers / {0} | normal pair (ms) | 2 layers "
+                              "and normal pair / {0} | pyramid readers (ms) | {0}: "
                               "depth pyramid, pyramid readers (ms) |",
                               against_name));
         fmt::print("|---|--:|--:|--:|--:|--:|--:|--:|{}\n",
-                   against_name.empty() ? "" : "--:|--:|--:|--:|");
+                   against_name.empty() ? "" : "--:|--:|--:|--:|--:|--:|");
         for (const auto& scene_name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(scene_name);
             for (int n : tap_counts) {
@@ -142,9 +144,12 @@ int main(int argc, char** argv) {
                         return sum;
                     };
                     const double other_ms = medians[2].at("sao");
-                    extra = fmt::format(" {:.2f} | {:.2f} | {:.2f} | {:.2f}, {:.2f} |", other_ms,
-                                        two_ms / other_ms, readers(medians[1]),
-                                        medians[2].at("depth_pyramid"), readers(medians[2]));
+                    const double pair_ms =
+                        medians[1].count("normal_pair") ? medians[1].at("normal_pair") : 0.0;
+                    extra = fmt::format(
+                        " {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f}, {:.2f} |", other_ms,
+                        two_ms / other_ms, pair_ms, (two_ms + pair_ms) / other_ms,
+                        readers(medians[1]), medians[2].at("depth_pyramid"), readers(medians[2]));
                 }
                 fmt::print("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |{}\n",
                            scene_name, n, tau, one_ms, two_ms, two_ms / one_ms,
