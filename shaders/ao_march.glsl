@@ -35,15 +35,15 @@
 //     of depth, the reconstruction error of a stored point and its normal,
 //     so that a ray leaving X's own surface at a grazing angle does not hit it.
 // The hit distance is where the last segment crosses that plane.
-float march_layer_hit(float depth, int layer, ivec2 p, vec3 q, float z, float t, float previous, vec3 position,
-                      vec3 direction, float step_length, float bias) {
+float march_layer_hit(float depth, int layer, vec2 encoded_normal, ivec2 p, vec3 q, float z, float t,
+                      float previous, vec3 position, vec3 direction, float step_length, float bias) {
   if (depth <= 0.0 || z <= depth) return -1.0;
   float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
   float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
                                     : depth + sao.thickness;
   if (z >= solid_end) return -1.0;
   vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-  vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
+  vec3 surface_normal = decode_normal(encoded_normal);
   float below = dot(q - surface, surface_normal);
   if (below >= -(bias + 1.0e-3 * z)) return -1.0;
   float above = dot(position + direction * previous - surface, surface_normal);
@@ -82,9 +82,13 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
       if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) break;
       ivec2 p = ivec2(at);
       vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
-      hit = march_layer_hit(depths.r, 0, p, q, z, t, previous, position, direction, step_length, bias);
+      // Both layers' encoded normals in one fetch (normal_pair.frag), where
+      // one fetch per layer was a large part of the pass on llvmpipe.
+      vec4 normals = texelFetch(normal_pair, p, 0);
+      hit = march_layer_hit(depths.r, 0, normals.xy, p, q, z, t, previous, position, direction, step_length, bias);
 #if AO_LAYERS > 1
-      if (hit < 0.0) hit = march_layer_hit(depths.g, 1, p, q, z, t, previous, position, direction, step_length, bias);
+      if (hit < 0.0)
+        hit = march_layer_hit(depths.g, 1, normals.zw, p, q, z, t, previous, position, direction, step_length, bias);
 #endif
       previous = t;
     }

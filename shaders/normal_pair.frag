@@ -1,10 +1,12 @@
 #version 450 core
 // Both G-buffer layers' encoded normals side by side, layer 0 in RG and layer
-// 1 in BA, for the thick spiral (ao_spiral_thick.glsl): its taps read the
-// normals of both layers at one source pixel, and one fetch of this texture
-// costs on llvmpipe about what one fetch of a layer of the G-buffer costs,
-// where those two fetches were more than a third of its pass
-// (docs/ao-accuracy.md, the thick spiral's cost). A copy: the same halves.
+// 1 in BA, for the march (ao_march.glsl) and the thick spiral
+// (ao_spiral_thick.glsl): their steps and taps read the normals of both
+// layers at one pixel, and one fetch of this texture costs on llvmpipe about
+// what one fetch of a layer of the G-buffer costs, where those two fetches
+// were more than a third of the thick spiral's pass and over a quarter of
+// the march's (docs/ao-accuracy.md, the thick spiral's cost). A copy: the
+// same halves.
 // A fragment shader, not a step of depth_pyramid.comp: llvmpipe writes a
 // compute shader's image stores lane by lane, and the copy there cost more
 // than it saved.

@@ -36,9 +36,9 @@ layout(binding = 0) uniform sampler2DArray gbuffer_normal;
 // surface (reversed Z, 0 = none), where that surface's object ends. The thick
 // spiral finds the same values in the depth pyramid's B and A.
 layout(binding = 29) uniform sampler2DArray backface_depth;
-// Thick spiral only: both layers' encoded normals (RG, BA) at full
-// resolution, copied from the G-buffer by normal_pair.frag, so that a tap
-// reads both with one fetch.
+// March and thick spiral: both layers' encoded normals (RG, BA) at full
+// resolution, copied from the G-buffer by normal_pair.frag, so that a step or
+// tap reads both with one fetch.
 layout(binding = 11) uniform sampler2D normal_pair;
 
 // sao.thickness, march, thick spiral and bitmask: how deep (m) behind a stored

@@ -1,7 +1,8 @@
 // Both G-buffer layers' encoded normals in one RGBA16F texture (layer 0 in RG,
-// layer 1 in BA; normal_pair.frag), for the thick spiral only, whose taps
-// then read both layers' normals with one fetch (docs/ao-accuracy.md, the
-// thick spiral's cost).
+// layer 1 in BA; normal_pair.frag), for the SAO estimators that read a
+// stored surface's normal at each tap or step (the march, the default, and
+// the thick spiral): they then read both layers' normals with one fetch
+// (docs/ao-accuracy.md, the thick spiral's cost).
 #include "passes/passes.hpp"
 
 #include <fmt/format.h>
@@ -22,7 +23,7 @@ public:
 
     // No other estimator reads it.
     bool enabled(const RenderSettings& settings) const override {
-        return settings.ao.method == AoMethod::spiral_thick;
+        return ao_method_reads_normal_pair(settings.ao.method);
     }
 
     PassDeclaration declaration(const RenderSettings&) const override {

@@ -47,9 +47,9 @@ public:
         // too, but reads the back faces from the pyramid (depth_pyramid.comp).
         if (settings.ao.method == AoMethod::march)
             reads.push_back({backface_binding, "backface.depth"});
-        // The thick spiral reads its taps' normals, both layers at once,
-        // from the normal pair pass (normal_pair.frag).
-        if (settings.ao.method == AoMethod::spiral_thick)
+        // The march and the thick spiral read the stored normals, both
+        // layers at once, from the normal pair pass (normal_pair.frag).
+        if (ao_method_reads_normal_pair(settings.ao.method))
             reads.push_back({normal_pair_binding, "normal_pair"});
         const AoSettings& ao = settings.ao;
         return {.reads = std::move(reads),
