@@ -1,6 +1,7 @@
 // The march deep SAO estimator (docs/deep-sao.md, "The march"). Included by
 // sao.frag where AO_METHOD is DEEPGI_AO_METHOD_MARCH; reads what sao.frag
-// declares (the depth pyramid's level 0, the normals, the back-face depths).
+// declares (the depth pyramid's level 0, which carries the back-face depths
+// for this estimator, and the normal pair).
 
 // The march estimator: the reference's definition, AV = 1 - mean f(d) over
 // cosine-weighted rays, f(d) = 1 - d^2 / r^2 for the first hit at d < r,
@@ -35,12 +36,10 @@
 //     of depth, the reconstruction error of a stored point and its normal,
 //     so that a ray leaving X's own surface at a grazing angle does not hit it.
 // The hit distance is where the last segment crosses that plane.
-float march_layer_hit(float depth, int layer, vec2 encoded_normal, ivec2 p, vec3 q, float z, float t,
+float march_layer_hit(float depth, float back_face, vec2 encoded_normal, ivec2 p, vec3 q, float z, float t,
                       float previous, vec3 position, vec3 direction, float step_length, float bias) {
   if (depth <= 0.0 || z <= depth) return -1.0;
-  float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
-  float solid_end = back_face > 0.0 ? max(frame.camera_ray_scale.z / back_face, depth + 2.0 * step_length)
-                                    : depth + sao.thickness;
+  float solid_end = back_face > 0.0 ? max(back_face, depth + 2.0 * step_length) : depth + sao.thickness;
   if (z >= solid_end) return -1.0;
   vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 surface_normal = decode_normal(encoded_normal);
@@ -81,14 +80,18 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
       vec2 at = (q.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
       if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) break;
       ivec2 p = ivec2(at);
-      vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
-      // Both layers' encoded normals in one fetch (normal_pair.frag), where
-      // one fetch per layer was a large part of the pass on llvmpipe.
+      // Both layers' depths and back faces (linear, 0 = none) in one fetch
+      // of the pyramid (depth_pyramid.comp), both layers' encoded normals in
+      // one of the normal pair (normal_pair.frag): a fetch per layer of each
+      // was most of the pass on llvmpipe (docs/ao-accuracy.md).
+      vec4 solids = texelFetch(depth_pyramid, p, 0);
       vec4 normals = texelFetch(normal_pair, p, 0);
-      hit = march_layer_hit(depths.r, 0, normals.xy, p, q, z, t, previous, position, direction, step_length, bias);
+      hit = march_layer_hit(solids.r, solids.b, normals.xy, p, q, z, t, previous, position, direction, step_length,
+                            bias);
 #if AO_LAYERS > 1
       if (hit < 0.0)
-        hit = march_layer_hit(depths.g, 1, normals.zw, p, q, z, t, previous, position, direction, step_length, bias);
+        hit = march_layer_hit(solids.g, solids.a, normals.zw, p, q, z, t, previous, position, direction,
+                              step_length, bias);
 #endif
       previous = t;
     }

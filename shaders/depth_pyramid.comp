@@ -5,13 +5,14 @@
 // level m, the corner chosen by a rotated grid: averaging would invent depths
 // between a foreground and a background that no surface has.
 //
-// Variant PYRAMID_BACK_FACES, for the thick spiral (ao_spiral_thick.glsl),
-// builds an RGBA32F pyramid whose B and A hold the linear depth of each
-// layer's back face (backface_depth.frag; 0 = none) at the same pixel: a
-// texel's four values come from one source pixel, so the spiral's one fetch
-// per tap gives both layers' solids, bit for bit what a fetch of the
-// back-face texture at that source pixel would give. Without it (no other
-// reader wants them) the pyramid stays RG32F, half the bytes.
+// Variant PYRAMID_BACK_FACES, for the march (ao_march.glsl, level 0 only) and
+// the thick spiral (ao_spiral_thick.glsl), builds an RGBA32F pyramid whose B
+// and A hold the linear depth of each layer's back face (backface_depth.frag;
+// 0 = none) at the same pixel: a texel's four values come from one source
+// pixel, so one fetch per step or tap gives both layers' solids, bit for bit
+// what a fetch of the back-face texture at that source pixel, made linear,
+// would give. Without it (no other reader wants them) the pyramid stays
+// RG32F, half the bytes.
 //
 // Variant PYRAMID_BASE_LEVEL writes level 0 from the G-buffer depth; the other
 // variant writes level `destination_level` from the level above it.

@@ -32,10 +32,6 @@
 // Bindings are this shader's own; sao_pass.cpp binds the same numbers.
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 0) uniform sampler2DArray gbuffer_normal;
-// March only: per layer, the nearest back face at or behind the stored
-// surface (reversed Z, 0 = none), where that surface's object ends. The thick
-// spiral finds the same values in the depth pyramid's B and A.
-layout(binding = 29) uniform sampler2DArray backface_depth;
 // March and thick spiral: both layers' encoded normals (RG, BA) at full
 // resolution, copied from the G-buffer by normal_pair.frag, so that a step or
 // tap reads both with one fetch.

@@ -92,13 +92,13 @@ TEST_CASE("depth pyramid: depth pyramid levels are rotated-grid subsamples at an
 // CPU) at level 0 and the rotated-grid rule (reference_pyramid_level) above
 // it, bit for bit: the thick spiral reads its solids' back faces from the
 // pyramid's B and A in place of the back-face texture at the texel's source
-// pixel, so the values must be the same floats.
-TEST_CASE("depth pyramid: with the thick spiral B and A carry each layer's back face",
+// pixel, so the values must be the same floats; so does the march at level 0.
+TEST_CASE("depth pyramid: with the thick spiral and the march B and A carry each layer's back face",
           "[pyramid]") {
     HeadlessContext context;
     const Scene scene = make_builtin_scene("cornell");
     RenderSettings settings = small_settings(161, 91);  // odd sizes clamp the grid's last row
-    settings.ao.method = AoMethod::march;
+    settings.ao.method = AoMethod::solid_angle;
     Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
     renderer.render(scene.default_camera);
     auto has_back_faces = [&] {
@@ -106,7 +106,7 @@ TEST_CASE("depth pyramid: with the thick spiral B and A carry each layer's back 
         return std::find(names.begin(), names.end(), "depth_pyramid-backface-level0") !=
                names.end();
     };
-    CHECK_FALSE(has_back_faces());  // RG32F for every other estimator
+    CHECK_FALSE(has_back_faces());  // RG32F for the estimators without solids
     // Moving to the thick spiral reallocates the pyramid as RGBA32F.
     settings.ao.method = AoMethod::spiral_thick;
     renderer.set_settings(settings);
@@ -140,6 +140,14 @@ TEST_CASE("depth pyramid: with the thick spiral B and A carry each layer's back 
         INFO("level " << m);
         CHECK(back_faces[m].pixels == reference_pyramid_level(back_faces[m - 1]).pixels);
     }
+    // The march, the default, reads the same level 0: the pyramid stays
+    // RGBA32F with the same back faces.
+    settings.ao.method = AoMethod::march;
+    renderer.set_settings(settings);
+    renderer.render(scene.default_camera);
+    REQUIRE(has_back_faces());
+    CHECK(renderer.read_pass_output("depth_pyramid-backface-level0").pixels ==
+          back_faces[0].pixels);
 }
 
 }  // namespace

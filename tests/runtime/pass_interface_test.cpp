@@ -416,8 +416,8 @@ TEST_CASE("passes: declarations are checked before the first frame and against w
         RenderSettings march = solid;
         march.ao.method = AoMethod::march;
         CHECK_THROWS_WITH(renderer.set_settings(march),
-                          "pass 'sao' reads the texture 'backface.depth', which no earlier "
-                          "enabled pass writes");
+                          "pass 'depth_pyramid' reads the texture 'backface.depth', which no "
+                          "earlier enabled pass writes");
         CHECK(renderer.settings().ao.method == AoMethod::solid_angle);
     }
     SECTION("publishing an undeclared texture fails, naming the pass") {

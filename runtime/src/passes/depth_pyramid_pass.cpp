@@ -26,10 +26,12 @@ constexpr GLuint destination_image = 1;
 
 constexpr int group_size = 8;  // local_size of depth_pyramid.comp
 
-// Only the thick spiral reads the back faces from the pyramid: the march and
-// the reflections march the back-face texture at full resolution.
+// The estimators that end each stored surface's solid at its back face (the
+// march, the default, and the thick spiral) read the back faces from the
+// pyramid, one fetch for both layers' depths and solids; the reflections
+// march the back-face texture.
 bool carries_back_faces(const RenderSettings& settings) {
-    return settings.ao.method == AoMethod::spiral_thick;
+    return ao_method_reads_back_faces(settings.ao.method);
 }
 
 int level_extent(int extent, int level) {

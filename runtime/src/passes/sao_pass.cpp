@@ -19,7 +19,6 @@ namespace {
 // Texture bindings of sao.frag.
 constexpr GLuint normal_binding = 0;
 constexpr GLuint depth_binding = 10;
-constexpr GLuint backface_binding = 29;
 constexpr GLuint normal_pair_binding = 11;
 
 // The define that builds one estimator: its include (sao.frag) and layers.
@@ -43,10 +42,8 @@ public:
     PassDeclaration declaration(const RenderSettings& settings) const override {
         std::vector<PassRead> reads = {{depth_binding, "depth_pyramid"},
                                        {normal_binding, "gbuffer.normal"}};
-        // The march ends each solid at its back face; the thick spiral does
-        // too, but reads the back faces from the pyramid (depth_pyramid.comp).
-        if (settings.ao.method == AoMethod::march)
-            reads.push_back({backface_binding, "backface.depth"});
+        // The march and the thick spiral end each solid at its back face,
+        // which they read from the pyramid (depth_pyramid.comp).
         // The march and the thick spiral read the stored normals, both
         // layers at once, from the normal pair pass (normal_pair.frag).
         if (ao_method_reads_normal_pair(settings.ao.method))
