@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
     int rotation_seed = 0;
     int temporal_offset = 0;
     float radiosity_clamp = deepgi::RadiositySettings{}.tap_clamp;
+    int radiosity_max_mip = deepgi::RadiositySettings{}.max_mip_level;
     CLI::App app{"temporal_convergence: still-camera E and AO against the converged image"};
     deepgi::bench::add_options(app, options);
     app.add_option("--frames-list", counts, "still frame counts at which to measure")
@@ -117,6 +118,9 @@ int main(int argc, char** argv) {
     app.add_option("--radiosity-clamp", radiosity_clamp,
                    "the radiosity gather's per-sample clamp, in the image and the converged image "
                    "(the renderer's radiosity-clamp setting)");
+    app.add_option("--radiosity-max-mip", radiosity_max_mip,
+                   "deepest MIP level the radiosity taps read, in the image and the converged "
+                   "image (the renderer's radiosity-max-mip setting)");
     std::string maps;
     bool check_running_mean = false;
     app.add_option("--maps", maps,
@@ -136,6 +140,7 @@ int main(int argc, char** argv) {
         settings.rotation_seed = rotation_seed;
         settings.temporal_offset = temporal_offset;
         settings.radiosity.tap_clamp = radiosity_clamp;
+        settings.radiosity.max_mip_level = radiosity_max_mip;
         deepgi::validate(settings);
         deepgi::HeadlessContext context;
         // The measurement renders the counts in order, from one renderer.
