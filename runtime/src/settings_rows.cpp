@@ -39,7 +39,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 32> numeric_table = {{
+const std::array<NumericSetting, 33> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -291,6 +291,18 @@ const std::array<NumericSetting, 32> numeric_table = {{
      .slider_max = 5000.0f,
      .logarithmic = true,
      DEEPGI_FLOAT_FIELD(radiosity.tap_clamp)},
+    {.name = "radiosity-max-mip",
+     .label = "max MIP level",
+     .group = "radiosity",
+     .owner = "radiosity",
+     .help = "Deep radiosity: deepest depth-pyramid level the taps read (the pyramid's own "
+             "when deeper; SAO's taps keep the pyramid's)",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = float(limits::max_pyramid_mip_level),
+     .slider_min = 0.0f,
+     .slider_max = float(limits::max_pyramid_mip_level),
+     DEEPGI_INT_FIELD(radiosity.max_mip_level)},
     {.name = "rho-prop",
      .label = "rho_prop (bounces)",
      .group = "radiosity",

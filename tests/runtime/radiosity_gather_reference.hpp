@@ -87,7 +87,8 @@ inline int mip_levels(const RenderSettings& settings, int width, int height) {
 
 // E (rgb) and confidence of one layer with boost 1 (boost amount 0) and no
 // previous frame (first frame, whose pattern rotation is 0): tap i reads MIP
-// level clamp(floor(log2(alpha_i R / q)), 0, deepest), i.e. the inputs of the
+// level clamp(floor(log2(alpha_i R / q)), 0, deepest), deepest the radiosity's
+// cap or the pyramid's last level, whichever is smaller, i.e. the inputs of the
 // level-0 pixel that level's rotated-grid texel holds, with Y rebuilt at that
 // pixel's centre. The estimators, as docs/radiosity.md states them:
 //   published: E = 2 pi / M * sum min(B cos_x, clamp),   c = M / (taps * layers)
@@ -104,7 +105,9 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
     const RadiositySettings& settings = render_settings.radiosity;
     const int width = inputs.depth[0].width;
     const int height = inputs.depth[0].height;
-    const int deepest = mip_levels(render_settings, width, height) - 1;
+    // The radiosity's own cap (radiosity-max-mip) within the levels built.
+    const int deepest =
+        std::min(mip_levels(render_settings, width, height) - 1, settings.max_mip_level);
     FloatImage irradiance{width, height, 3, std::vector<float>(std::size_t(width) * height * 3)};
     FloatImage confidence{width, height, 1, std::vector<float>(std::size_t(width) * height)};
     const float radius_squared = settings.radius * settings.radius;

@@ -23,13 +23,18 @@ TEST_CASE("radiosity: the gather matches its CPU evaluation on read-back inputs"
         const char* scene;
         int layers;
         RadiosityMethod method;
+        int max_mip = limits::max_pyramid_mip_level;  // radiosity-max-mip
     };
-    // Both estimators on both scenes; the layer counts with the default one.
+    // Both estimators on both scenes; the layer counts with the default one;
+    // the taps' level cap at level 0 (SAO's pyramid unchanged) on cornell,
+    // where a tenth of the lit pixels take light from deeper levels (at the
+    // test's 1 m radius atrium's taps barely reach level 1).
     for (const Case c :
          {Case{"cornell", 1, RadiosityMethod::area}, Case{"cornell", 2, RadiosityMethod::area},
           Case{"atrium", 1, RadiosityMethod::area}, Case{"atrium", 2, RadiosityMethod::area},
           Case{"cornell", 2, RadiosityMethod::published},
-          Case{"atrium", 2, RadiosityMethod::published}}) {
+          Case{"atrium", 2, RadiosityMethod::published},
+          Case{"cornell", 2, RadiosityMethod::area, 0}}) {
         const std::string scene_name = c.scene;
         const int layers = c.layers;
         {
@@ -37,6 +42,7 @@ TEST_CASE("radiosity: the gather matches its CPU evaluation on read-back inputs"
             RenderSettings settings = gather_test_settings();
             settings.radiosity.layers = layers;
             settings.radiosity.method = c.method;
+            settings.radiosity.max_mip_level = c.max_mip;
             Renderer renderer(scene, settings, loader);
             renderer.render(scene.default_camera);
             const GatherInputs inputs = read_inputs(renderer, scene.default_camera, settings);
@@ -70,13 +76,27 @@ TEST_CASE("radiosity: the gather matches its CPU evaluation on read-back inputs"
                 }
                 const double fraction = double(within) / double(pixels);
                 INFO(scene_name << ", " << to_string(c.method) << ", " << layers
-                                << " layer(s) gathered, layer " << layer << ": " << fraction * 100.0
-                                << "% within 1e-3 relative, " << lit << " lit pixels of "
-                                << pixels);
+                                << " layer(s) gathered, max MIP " << c.max_mip << ", layer "
+                                << layer << ": " << fraction * 100.0 << "% within 1e-3 relative, "
+                                << lit << " lit pixels of " << pixels);
                 CHECK(fraction >= 0.999);
                 // Enough of the image receives light that the check means something
                 // (atrium's layer 1 is mostly hidden floor: about 1% is lit there).
                 CHECK(lit > pixels / 200);
+                if (c.max_mip < limits::max_pyramid_mip_level) {
+                    // The cap matters here: the uncapped evaluation differs
+                    // by over 1% at a tenth of the lit pixels or more, so a gather that ignored
+                    // the cap would fail the check above.
+                    RenderSettings uncapped = settings;
+                    uncapped.radiosity.max_mip_level = limits::max_pyramid_mip_level;
+                    const FloatImage other = reference_gather(inputs, taps, uncapped, layer).first;
+                    std::size_t moved = 0;
+                    for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+                        moved += std::abs(other.pixels[i] - expected.pixels[i]) >
+                                 0.01f * std::max(expected.pixels[i], 1e-3f);
+                    INFO(moved << " channels move with the cap");
+                    CHECK(moved > lit / 10);
+                }
             }
         }
     }

@@ -227,6 +227,12 @@ struct RadiositySettings {
     // hides it (radiosity_visibility.glsl); 0: no test, every sample that
     // faces X within the radius counts (docs/radiosity.md).
     int visibility_steps = 0;
+    // Deepest MIP level of the depth pyramid and the prepared arrays a tap
+    // reads, below the pyramid's own (SAO keeps reading the pyramid's): a
+    // level-m tap reads the one level-0 pixel of its 2^m block the rotated
+    // grid keeps, a lattice fixed in the image that frames do not average
+    // away (docs/radiosity.md, "The taps' MIP levels").
+    int max_mip_level = limits::max_pyramid_mip_level;
     // false: compose takes E and its confidence as 0, so the environment term
     // fills everywhere (the passes still run for their debug views).
     bool enabled = true;

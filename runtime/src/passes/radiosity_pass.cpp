@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
+#include <algorithm>
+
 namespace deepgi {
 
 namespace {
@@ -120,15 +122,18 @@ public:
         const GLuint gather = settings.visibility_steps > 0 ? gather_visible_.get() : gather_.get();
         glUseProgram(gather);
         // The prepare pass builds as many levels as the depth pyramid.
-        parameters_.bind({.radius = settings.radius,
-                          .tap_clamp = settings.tap_clamp,
-                          .q = frame.value("depth_pyramid.q"),
-                          .max_mip = frame.integer("depth_pyramid.max_level"),
-                          .layers = settings.layers,
-                          .method = static_cast<int>(settings.method),
-                          .visibility_steps = settings.visibility_steps,
-                          .visibility_thickness =
-                              settings.visibility_steps > 0 ? frame.value("sao.thickness") : 0.0f});
+        parameters_.bind(
+            {.radius = settings.radius,
+             .tap_clamp = settings.tap_clamp,
+             .q = frame.value("depth_pyramid.q"),
+             // Its own cap, within the levels the pyramid (and so the
+             // prepare pass) built.
+             .max_mip = std::min(settings.max_mip_level, frame.integer("depth_pyramid.max_level")),
+             .layers = settings.layers,
+             .method = static_cast<int>(settings.method),
+             .visibility_steps = settings.visibility_steps,
+             .visibility_thickness =
+                 settings.visibility_steps > 0 ? frame.value("sao.thickness") : 0.0f});
         for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
             begin_fullscreen(raw_framebuffers_[layer].get(), width_, height_);
             glProgramUniform1i(gather, layer_location, layer);

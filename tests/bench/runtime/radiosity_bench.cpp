@@ -9,12 +9,16 @@
 // under the scene's default (static) camera, the two renderers taking turns
 // frame by frame. With --visibility-steps N, a third renderer, the default
 // frame with the gather's visibility test of N steps, takes turns with them,
-// and a second table sets its radiosity pass against the default's.
+// and a second table sets its radiosity pass against the default's. With
+// --max-mip-list L1,L2,..., one more renderer per level, the default frame
+// with the radiosity taps' MIP level capped there (radiosity-max-mip), takes
+// turns with them too, and a table sets its passes against the default's.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 
 #include <fmt/format.h>
 
+#include <memory>
 #include <optional>
 
 using Medians = deepgi::bench::PassMedians;
@@ -29,6 +33,12 @@ int main(int argc, char** argv) {
                    "Also time the default frame with the radiosity visibility test of this many "
                    "steps (0: not)")
         ->check(CLI::Range(0, deepgi::limits::max_radiosity_visibility_steps));
+    std::vector<int> max_mips;
+    app.add_option("--max-mip-list", max_mips,
+                   "Also time the default frame with the radiosity taps' MIP level capped at each "
+                   "of these levels (radiosity-max-mip)")
+        ->delimiter(',')
+        ->check(CLI::Range(0, deepgi::limits::max_pyramid_mip_level));
     CLI11_PARSE(app, argc, argv);
     return deepgi::bench::run("radiosity_bench", [&] {
         deepgi::bench::finish(options);
@@ -39,6 +49,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> order;
         std::vector<std::pair<std::string, Medians>> full_frames;
         std::string visibility_rows;
+        std::string cap_rows;
         fmt::print(
             "| scene | radiosity, 1 layer (ms) | radiosity, 2 layers (ms) | 2 / 1 | blur (ms) | "
             "frame, 1 layer (ms) | frame, 2 layers (ms) |\n"
@@ -61,7 +72,28 @@ int main(int argc, char** argv) {
             std::vector<deepgi::bench::Configuration> timed = {{&two_layers, scene.default_camera},
                                                                {&one_layers, scene.default_camera}};
             if (visible) timed.push_back({&*visible, scene.default_camera});
+            std::vector<std::unique_ptr<deepgi::Renderer>> capped;
+            for (int level : max_mips) {
+                deepgi::RenderSettings cap = settings;
+                cap.radiosity.max_mip_level = level;
+                capped.push_back(std::make_unique<deepgi::Renderer>(
+                    scene, cap, deepgi::ShaderLoader::from_build_configuration()));
+                timed.push_back({capped.back().get(), scene.default_camera});
+            }
             const std::vector<Medians> medians = deepgi::bench::time_alternated(timed, options);
+            for (std::size_t k = 0; k < max_mips.size(); ++k) {
+                const Medians& base = medians[0];
+                const Medians& cap = medians[timed.size() - max_mips.size() + k];
+                // The gather is the radiosity pass's first part; the
+                // temporal filter and blur read as many texels at any cap.
+                const double base_gi = base.at("radiosity") + base.at("blur");
+                const double cap_gi = cap.at("radiosity") + cap.at("blur");
+                cap_rows += fmt::format(
+                    "| {} | {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} |\n",
+                    name, max_mips[k], base.at("radiosity"), cap.at("radiosity"),
+                    cap.at("radiosity") / base.at("radiosity"), cap_gi / base_gi, base.at("total"),
+                    cap.at("total"), cap.at("total") / base.at("total"));
+            }
             if (visible) {
                 const Medians& off = medians[0];
                 const Medians& on = medians[2];
@@ -91,6 +123,13 @@ int main(int argc, char** argv) {
                 "| "
                 "frame, test (ms) | ratio |\n|---|---|---|---|---|---|---|\n{}",
                 visibility_steps, visibility_rows);
+        if (!cap_rows.empty())
+            fmt::print(
+                "\nRadiosity taps' MIP level capped against the default (two layers):\n\n"
+                "| scene | cap | radiosity, default (ms) | radiosity, cap (ms) | ratio | "
+                "radiosity + blur ratio | frame, default (ms) | frame, cap (ms) | ratio |\n"
+                "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n{}",
+                cap_rows);
         fmt::print("\n{}\n", measured);
         fmt::print("\nPer pass, default frame (ms):\n\n| scene |");
         for (const auto& pass : order) fmt::print(" {} |", pass);
