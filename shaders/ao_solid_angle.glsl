@@ -49,11 +49,11 @@ float solid_angle_term(vec3 v, vec3 normal, vec3 tap_position, vec3 tap_normal, 
 // function called once per layer with a constant layer, not a loop over the
 // layers: llvmpipe runs a loop over the layers as a loop, each select on the
 // layer at run time (docs/ao-accuracy.md, "One call per layer in every estimator").
-float solid_angle_layer(float tap_depth, int layer, vec2 tap_centre, ivec2 source, float depth, vec3 position,
+float solid_angle_layer(float tap_depth, vec2 encoded_normal, vec2 tap_centre, float depth, vec3 position,
                         vec3 normal, float radius_squared, float footprint_bias, float alpha) {
   if (tap_depth <= 0.0) return 0.0;
   vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
-  vec3 tap_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(source, layer), 0).xy);
+  vec3 tap_normal = decode_normal(encoded_normal);
   float ratio = tap_depth / depth;
   return max(0.0, solid_angle_term(y - position, normal, y, tap_normal, radius_squared, footprint_bias,
                                    ratio * ratio, alpha));
@@ -71,12 +71,14 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
     vec2 tap_centre;
     if (!spiral_tap(i, pixel, rotation, radius_pixels, texel, level, tap_centre)) continue;
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
-    ivec2 source = ivec2(tap_centre);
-    float occlusion = solid_angle_layer(tap_depths.r, 0, tap_centre, source, depth, position, normal,
+    // Both layers' encoded normals at the tap's source pixel in one fetch
+    // (normal_pair.frag), where a fetch per layer was a large part of the pass.
+    vec4 tap_normals = texelFetch(normal_pair, ivec2(tap_centre), 0);
+    float occlusion = solid_angle_layer(tap_depths.r, tap_normals.xy, tap_centre, depth, position, normal,
                                         radius_squared, footprint_bias, AO_TAP_ALPHAS[i]);
 #if AO_LAYERS > 1
-    occlusion = max(occlusion, solid_angle_layer(tap_depths.g, 1, tap_centre, source, depth, position, normal,
-                                                 radius_squared, footprint_bias, AO_TAP_ALPHAS[i]));
+    occlusion = max(occlusion, solid_angle_layer(tap_depths.g, tap_normals.zw, tap_centre, depth, position,
+                                                 normal, radius_squared, footprint_bias, AO_TAP_ALPHAS[i]));
 #endif
     sum += occlusion;
   }

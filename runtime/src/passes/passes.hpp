@@ -43,10 +43,11 @@ std::vector<SaoProgram> sao_program_table();
 
 // Whether the SAO estimator reads its taps' or steps' normals from the
 // normal_pair pass (both layers in one fetch) instead of the G-buffer: the
-// march and the thick spiral, whose per-layer normal fetches were a large
-// part of their pass on llvmpipe (docs/ao-accuracy.md).
+// march, the thick spiral and the solid angle, whose per-layer normal
+// fetches were a large part of their pass on llvmpipe (docs/ao-accuracy.md).
 constexpr bool ao_method_reads_normal_pair(AoMethod method) {
-    return method == AoMethod::march || method == AoMethod::spiral_thick;
+    return method == AoMethod::march || method == AoMethod::spiral_thick ||
+           method == AoMethod::solid_angle;
 }
 
 // Whether the reflection pass runs: reflections on and a mirror material in
