@@ -13,28 +13,15 @@ trap 'rm -rf "$scratch"' EXIT
 dump=$scratch/dump
 ref=$scratch/ref
 mkdir "$dump" "$ref"
-failures=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/bad_arguments.sh
+. "$(dirname "$0")/../support/bad_arguments.sh"
 
 # bad TOOL TEXT ARGS...: exit 2, empty stdout, one stderr line that starts
 # with "deepgi_TOOL: error:" and holds TEXT.
 bad() {
-  local tool=$1 text=$2
-  shift 2
-  "$tools/deepgi_$tool" "$@" > "$scratch/out" 2> "$scratch/err"
-  local status=$?
-  local lines
-  lines=$(wc -l < "$scratch/err")
-  local what="deepgi_$tool $*"
-  [ "$status" -eq 2 ] || fail "$what: exit $status, not 2"
-  [ -s "$scratch/out" ] && fail "$what: wrote to stdout: $(head -c 200 "$scratch/out")"
-  [ "$lines" -eq 1 ] || fail "$what: $lines lines on stderr: $(cat "$scratch/err")"
-  grep -q "^deepgi_$tool: error: " "$scratch/err" || fail "$what: stderr does not start with the tool's name: $(cat "$scratch/err")"
-  grep -qF -- "$text" "$scratch/err" || fail "$what: stderr does not name '$text': $(cat "$scratch/err")"
+  local tool=$1
+  shift
+  expect_bad "$tools/deepgi_$tool" "deepgi_$tool" "$@"
 }
 
 # parses TOOL ARGS...: the arguments parse; the run then stops at the first

@@ -8,28 +8,15 @@ set -u
 benches=$1
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-failures=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../../support/bad_arguments.sh
+. "$(dirname "$0")/../../support/bad_arguments.sh"
 
 # bad BENCH TEXT ARGS...: exit 2, empty stdout, one stderr line that starts
 # with "BENCH: error:" and holds TEXT.
 bad() {
-  local bench=$1 text=$2
-  shift 2
-  "$benches/$bench" "$@" > "$scratch/out" 2> "$scratch/err"
-  local status=$?
-  local lines
-  lines=$(wc -l < "$scratch/err")
-  local what="$bench $*"
-  [ "$status" -eq 2 ] || fail "$what: exit $status, not 2"
-  [ -s "$scratch/out" ] && fail "$what: wrote to stdout: $(head -c 200 "$scratch/out")"
-  [ "$lines" -eq 1 ] || fail "$what: $lines lines on stderr: $(cat "$scratch/err")"
-  grep -q "^$bench: error: " "$scratch/err" || fail "$what: stderr does not start with the benchmark's name: $(cat "$scratch/err")"
-  grep -qF -- "$text" "$scratch/err" || fail "$what: stderr does not name '$text': $(cat "$scratch/err")"
+  local bench=$1
+  shift
+  expect_bad "$benches/$bench" "$bench" "$@"
 }
 
 for bench in temporal_convergence sao_bench radiosity_bench; do
