@@ -257,6 +257,17 @@ const std::vector<DumpRange>& dump_ranges() {
          [](const float* p) {
              return in_range(std::min(p[0], p[1]), 0, inf) + in_range(p[2], 0, 0);
          }},
+        // With the march (the default) or the thick spiral: each layer's back
+        // face in metres, 0 = none.
+        {"depth_pyramid-backface-level", 3,
+         [](const float* p) {
+             return in_range(std::min(p[0], p[1]), 0, inf) + in_range(p[2], 0, 0);
+         }},
+        // The encoded (octahedral) normal as the normal pair copies it.
+        {"normal_pair-layer", 3,
+         [](const float* p) {
+             return in_range(p[0], -1, 1) + in_range(p[1], -1, 1) + in_range(p[2], 0, 0);
+         }},
         // The march's visibility is in [0, 1] from the start (only the solid
         // angle's raw estimate is signed).
         {"ao-raw", 1, [](const float* p) { return in_range(p[0], 0, 1); }},
@@ -356,8 +367,8 @@ TEST_CASE("cli: every dumped output is finite and inside its documented range", 
     const deepgi::FloatImage colour = deepgi::read_pfm(dir / "tonemap-colour.pfm");
     CHECK(colour.width == 161);
     CHECK(colour.height == 91);
-    // docs/deepgi.md: 57 files for cornell with the defaults.
-    CHECK(files == 57);
+    // docs/deepgi.md: 65 files for cornell with the defaults.
+    CHECK(files == 65);
 }
 
 TEST_CASE("cli: a glTF file renders with its base colour factor and emissive",
