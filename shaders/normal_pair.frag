@@ -1,7 +1,8 @@
 #version 450 core
 // Both G-buffer layers' encoded normals side by side, layer 0 in RG and layer
-// 1 in BA, for the march (ao_march.glsl) and the thick spiral
-// (ao_spiral_thick.glsl): their steps and taps read the normals of both
+// 1 in BA, for the march (ao_march.glsl), the thick spiral
+// (ao_spiral_thick.glsl) and the solid angle (ao_solid_angle.glsl): their
+// steps and taps read the normals of both
 // layers at one pixel, and one fetch of this texture costs on llvmpipe about
 // what one fetch of a layer of the G-buffer costs, where those two fetches
 // were more than a third of the thick spiral's pass and over a quarter of

@@ -32,8 +32,8 @@
 // Bindings are this shader's own; sao_pass.cpp binds the same numbers.
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 0) uniform sampler2DArray gbuffer_normal;
-// March and thick spiral: both layers' encoded normals (RG, BA) at full
-// resolution, copied from the G-buffer by normal_pair.frag, so that a step or
+// March, thick spiral and solid angle: both layers' encoded normals (RG, BA)
+// at full resolution, copied from the G-buffer by normal_pair.frag, so that a step or
 // tap reads both with one fetch.
 layout(binding = 11) uniform sampler2D normal_pair;
 

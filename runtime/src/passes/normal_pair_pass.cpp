@@ -1,8 +1,9 @@
 // Both G-buffer layers' encoded normals in one RGBA16F texture (layer 0 in RG,
 // layer 1 in BA; normal_pair.frag), for the SAO estimators that read a
-// stored surface's normal at each tap or step (the march, the default, and
-// the thick spiral): they then read both layers' normals with one fetch
-// (docs/ao-accuracy.md, the thick spiral's cost).
+// stored surface's normal at each tap or step (ao_method_reads_normal_pair:
+// the march, the default, the thick spiral and the solid angle): they then
+// read both layers' normals with one fetch (docs/ao-accuracy.md, "The march
+// reads the pair too").
 #include "passes/passes.hpp"
 
 #include <fmt/format.h>

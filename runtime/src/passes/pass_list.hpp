@@ -7,10 +7,10 @@
 // DEEPGI_PASS first.
 DEEPGI_PASS(shadow)
 DEEPGI_PASS(gbuffer)
-DEEPGI_PASS(backface_depth)  // the march only
+DEEPGI_PASS(backface_depth)  // the march, the thick spiral, mirrors, radiosity visibility
 DEEPGI_PASS(direct_light)
 DEEPGI_PASS(depth_pyramid)
-DEEPGI_PASS(normal_pair)  // the march and the thick spiral
+DEEPGI_PASS(normal_pair)  // the march, the thick spiral and the solid angle
 DEEPGI_PASS(sao)
 DEEPGI_PASS(ao_temporal)
 DEEPGI_PASS(radiosity_prepare)

@@ -42,10 +42,10 @@ public:
     PassDeclaration declaration(const RenderSettings& settings) const override {
         std::vector<PassRead> reads = {{depth_binding, "depth_pyramid"},
                                        {normal_binding, "gbuffer.normal"}};
-        // The march and the thick spiral end each solid at its back face,
-        // which they read from the pyramid (depth_pyramid.comp).
-        // The march and the thick spiral read the stored normals, both
-        // layers at once, from the normal pair pass (normal_pair.frag).
+        // The estimators that read a stored surface's normal at each tap or
+        // step take both layers' at once from the normal pair pass
+        // (normal_pair.frag); the march and the thick spiral read the back
+        // faces that end their solids from the pyramid (depth_pyramid.comp).
         if (ao_method_reads_normal_pair(settings.ao.method))
             reads.push_back({normal_pair_binding, "normal_pair"});
         const AoSettings& ao = settings.ao;

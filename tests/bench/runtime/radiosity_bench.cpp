@@ -54,21 +54,18 @@ int main(int argc, char** argv) {
             "| scene | radiosity, 1 layer (ms) | radiosity, 2 layers (ms) | 2 / 1 | blur (ms) | "
             "frame, 1 layer (ms) | frame, 2 layers (ms) |\n"
             "|---|---|---|---|---|---|---|\n");
+        const deepgi::ShaderLoader loader = deepgi::ShaderLoader::from_build_configuration();
         for (const auto& name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(name);
             std::vector<std::string> scene_order;
             deepgi::RenderSettings one_layer = settings;
             one_layer.radiosity.layers = 1;
-            deepgi::Renderer two_layers(scene, settings,
-                                        deepgi::ShaderLoader::from_build_configuration());
-            deepgi::Renderer one_layers(scene, one_layer,
-                                        deepgi::ShaderLoader::from_build_configuration());
+            deepgi::Renderer two_layers(scene, settings, loader);
+            deepgi::Renderer one_layers(scene, one_layer, loader);
             deepgi::RenderSettings with_visibility = settings;
             with_visibility.radiosity.visibility_steps = visibility_steps;
             std::optional<deepgi::Renderer> visible;
-            if (visibility_steps > 0)
-                visible.emplace(scene, with_visibility,
-                                deepgi::ShaderLoader::from_build_configuration());
+            if (visibility_steps > 0) visible.emplace(scene, with_visibility, loader);
             std::vector<deepgi::bench::Configuration> timed = {{&two_layers, scene.default_camera},
                                                                {&one_layers, scene.default_camera}};
             if (visible) timed.push_back({&*visible, scene.default_camera});
@@ -76,8 +73,7 @@ int main(int argc, char** argv) {
             for (int level : max_mips) {
                 deepgi::RenderSettings cap = settings;
                 cap.radiosity.max_mip_level = level;
-                capped.push_back(std::make_unique<deepgi::Renderer>(
-                    scene, cap, deepgi::ShaderLoader::from_build_configuration()));
+                capped.push_back(std::make_unique<deepgi::Renderer>(scene, cap, loader));
                 timed.push_back({capped.back().get(), scene.default_camera});
             }
             const std::vector<Medians> medians = deepgi::bench::time_alternated(timed, options);
