@@ -37,7 +37,6 @@ layout(binding = 0) uniform sampler2DArray gbuffer_normal;
 layout(binding = 1) uniform sampler2DArray gbuffer_albedo;
 layout(binding = 2) uniform sampler2DArray gbuffer_emissive;
 layout(binding = 3) uniform sampler2DArray gbuffer_motion;
-layout(binding = 4) uniform sampler2DArray gbuffer_depth;
 layout(binding = 7) uniform sampler2DArray direct_light;
 layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 15) uniform sampler2D previous_irradiance0;
@@ -78,12 +77,18 @@ vec3 previous_irradiance(ivec2 pixel, int layer, vec3 normal) {
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, imageSize(destination).xy))) return;
+#ifdef PREPARE_BASE_LEVEL
+  vec2 depths = texelFetch(depth_pyramid, texel, 0).rg;  // both layers' linear depths
+#endif
   for (int layer = 0; layer < DEEPGI_LAYER_COUNT; ++layer) {
 #ifdef PREPARE_BASE_LEVEL
     ivec3 at = ivec3(texel, layer);
     vec3 radiance = vec3(0.0);
     vec2 encoded_normal = texelFetch(gbuffer_normal, at, 0).xy;
-    if (texelFetch(gbuffer_depth, at, 0).r > 0.0) {
+    // The pyramid's linear depth is positive exactly where the G-buffer
+    // stored a surface (depth_pyramid.comp).
+    float depth = layer == 0 ? depths.r : depths.g;
+    if (depth > 0.0) {
       float rho_prop = prepare.rho_prop;
       vec3 rho = srgb_decode(texelFetch(gbuffer_albedo, at, 0).rgb);
       vec3 bounce = vec3(0.0);
@@ -91,7 +96,6 @@ void main() {
       radiance = (texelFetch(direct_light, at, 0).rgb + bounce) * boost(rho, prepare.boost);
       if (layer == 0) radiance += texelFetch(gbuffer_emissive, at, 0).rgb;
     }
-    float depth = texelFetch(depth_pyramid, texel, 0)[layer];
     imageStore(destination, at, pack_prepared(depth, encoded_normal, radiance));
 #else
     ivec2 from = min(2 * texel + rotated_grid_corner(texel), imageSize(source).xy - 1);

@@ -9,24 +9,26 @@
 // The halves are the values an RG16F normal and an RGBA16F radiance texture
 // held before, so the gather sums exactly what it summed from those.
 
-// x rounded toward zero to a half-float value, as llvmpipe's store to a
-// half-float image rounds (packHalf2x16 rounds to nearest, which moved 1 in 4
-// radiance values by one half-float step): the largest finite half past it,
-// a denormal half below 2^-14, infinities and NaN as they are.
-float half_toward_zero(float x) {
-  float magnitude = abs(x);
-  if (isnan(x) || isinf(x)) return x;
-  float truncated;
-  if (magnitude >= 65504.0) truncated = 65504.0;
-  else if (magnitude >= 6.103515625e-05) truncated = uintBitsToFloat(floatBitsToUint(magnitude) & 0xffffe000u);
-  else truncated = floor(magnitude * 16777216.0) * 5.9604644775390625e-08;  // whole multiples of 2^-24
-  return uintBitsToFloat(floatBitsToUint(truncated) | (floatBitsToUint(x) & 0x80000000u));
+// The half-float bits of x rounded toward zero, as llvmpipe's store to a
+// half-float image rounds (packHalf2x16 rounds to nearest, which moved 1 in
+// 4 radiance values by one half-float step), in integer operations: above
+// 2^-14 the float's bits shifted and rebiased, below it the whole multiples
+// of 2^-24 (a conversion to uint truncates), past the largest finite half
+// that half; infinities stay infinite, NaN a NaN.
+uint half_bits_toward_zero(float x) {
+  uint bits = floatBitsToUint(x);
+  uint magnitude = bits & 0x7fffffffu;
+  uint normal = min((magnitude >> 13) - 0x1c000u, 0x7bffu);
+  uint subnormal = uint(abs(x) * 16777216.0);
+  uint half_magnitude = magnitude < 0x38800000u ? subnormal : normal;
+  if (magnitude >= 0x7f800000u) half_magnitude = magnitude == 0x7f800000u ? 0x7c00u : 0x7e00u;
+  return ((bits >> 16) & 0x8000u) | half_magnitude;
 }
 
 uvec4 pack_prepared(float depth, vec2 encoded_normal, vec3 radiance) {
   return uvec4(floatBitsToUint(depth), packHalf2x16(encoded_normal),
-               packHalf2x16(vec2(half_toward_zero(radiance.r), half_toward_zero(radiance.g))),
-               packHalf2x16(vec2(half_toward_zero(radiance.b), 0.0)));
+               half_bits_toward_zero(radiance.r) | (half_bits_toward_zero(radiance.g) << 16),
+               half_bits_toward_zero(radiance.b));
 }
 
 float prepared_depth(uvec4 texel) { return uintBitsToFloat(texel.x); }

@@ -27,7 +27,6 @@ constexpr GLuint normal_binding = 0;
 constexpr GLuint albedo_binding = 1;
 constexpr GLuint emissive_binding = 2;
 constexpr GLuint motion_binding = 3;
-constexpr GLuint depth_binding = 4;
 constexpr GLuint direct_light_binding = 7;
 constexpr GLuint depth_pyramid_binding = 10;
 constexpr GLuint previous_layer0_binding = 15;
@@ -65,7 +64,6 @@ public:
                           {albedo_binding, "gbuffer.albedo"},
                           {emissive_binding, "gbuffer.emissive"},
                           {motion_binding, "gbuffer.motion"},
-                          {depth_binding, "gbuffer.depth"},
                           {direct_light_binding, "direct_light.radiance"},
                           {depth_pyramid_binding, "depth_pyramid"}},
                 .writes = {"radiosity_prepare.samples"}};
