@@ -5,7 +5,6 @@
 #include "gbuffer_encoding.glsl"
 #include "math_constants.glsl"
 #include "tonemap_curve.glsl"
-#include "radiosity_prepared.glsl"
 
 // Bindings are this shader's own; debug_view_pass.cpp binds the same numbers.
 layout(binding = 0) uniform sampler2DArray gbuffer_normal;
@@ -17,7 +16,7 @@ layout(binding = 7) uniform sampler2DArray direct_light;
 layout(binding = 13) uniform sampler2D ao_raw;
 layout(binding = 11) uniform sampler2D ao_blurred;
 layout(binding = 28) uniform sampler2D ao_temporal;
-layout(binding = 21) uniform usampler2DArray prepared;
+layout(binding = 21) uniform sampler2DArray prepared_radiance;
 layout(binding = 14) uniform sampler2D radiosity_blurred;
 layout(binding = 17) uniform sampler2D radiosity_layer0;
 layout(binding = 18) uniform sampler2D radiosity_layer1;
@@ -58,7 +57,7 @@ vec3 view_colour(ivec2 pixel, int view) {
   if (view == DEEPGI_VIEW_AO_BLURRED) return vec3(clamp(texelFetch(ao_blurred, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_AO_TEMPORAL) return vec3(clamp(texelFetch(ao_temporal, pixel, 0).r, 0.0, 1.0));
   if (view == DEEPGI_VIEW_RADIOSITY_PREPARED)
-    return filmic_tonemap(prepared_radiance(texelFetch(prepared, ivec3(pixel, 0), 0)) * exposure);
+    return filmic_tonemap(texelFetch(prepared_radiance, ivec3(pixel, 0), 0).rgb * exposure);
   // Irradiance E is shown as the radiance of a white Lambertian surface, E / pi.
   if (view == DEEPGI_VIEW_RADIOSITY_LAYER0)
     return filmic_tonemap(texelFetch(radiosity_layer0, pixel, 0).rgb * (exposure * inv_pi));

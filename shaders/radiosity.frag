@@ -7,11 +7,10 @@
 // X faces it (w.n_X > 0) and it faces X (-w.n_Y > 0), w = (Y - X) / |Y - X|.
 // B(Y) is the outgoing radiance radiosity_prepare.comp wrote (direct light,
 // last frame's bounce, boost and emissive), n_Y its normal and Y is rebuilt
-// from its linear depth (the depth pyramid's), all three in one texel of the
-// prepared array (radiosity_prepared.glsl): one fetch per sample. Tap i
-// reads MIP level m_i = clamp(floor(log2(alpha_i R / q)), 0, max), as SAO
-// does: the rotated-grid texel is one level-0 pixel, and Y is rebuilt at
-// that pixel's centre.
+// from the depth pyramid. Tap i reads MIP level
+// m_i = clamp(floor(log2(alpha_i R / q)), 0, max) of all three, as SAO does:
+// the rotated-grid texel is one level-0 pixel, and Y is rebuilt at that
+// pixel's centre.
 //
 // DEEPGI_RADIOSITY_METHOD_AREA estimates the reference's one-bounce
 // irradiance (reference.hpp)
@@ -47,12 +46,12 @@
 #include "pixel_rotation.glsl"
 #include "radiosity_taps.glsl"
 #include "rotated_grid.glsl"
-#include "radiosity_prepared.glsl"
 #include "math_constants.glsl"
 
 // Bindings are this shader's own; radiosity_pass.cpp binds the same numbers.
-// Per layer and level: linear depth, normal and B (radiosity_prepared.glsl).
-layout(binding = 21) uniform usampler2DArray prepared;
+layout(binding = 10) uniform sampler2D depth_pyramid;
+layout(binding = 21) uniform sampler2DArray prepared_radiance;
+layout(binding = 22) uniform sampler2DArray prepared_normal;
 
 layout(location = 4) uniform int layer;
 layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityGatherBlock {
@@ -83,8 +82,8 @@ float area_weight(vec3 tap_position, vec3 tap_normal, float vv, float cos_y, flo
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  uvec4 centre = texelFetch(prepared, ivec3(pixel, layer), 0);
-  float depth = prepared_depth(centre);
+  vec2 depths = texelFetch(depth_pyramid, pixel, 0).rg;
+  float depth = layer == 0 ? depths.r : depths.g;
   if (depth <= 0.0) {
     out_irradiance = vec4(0.0);
     return;
@@ -94,7 +93,7 @@ void main() {
   float q = gather.q;
   int max_mip = gather.max_mip;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-  vec3 normal = decode_normal(prepared_encoded_normal(centre));
+  vec3 normal = decode_normal(texelFetch(prepared_normal, ivec3(pixel, layer), 0).xy);
   float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
   // The per-frame angle (frame.cpp) follows a sequence that never repeats,
@@ -127,10 +126,10 @@ void main() {
     int level = steps < 1.0 ? 0 : min(findMSB(uint(steps)), max_mip);
     // Level sizes computed, not asked of textureSize() (llvmpipe, sao.frag).
     ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
+    vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
     vec2 tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
     for (int j = 0; j < gather.layers; ++j) {
-      uvec4 sample_texel = texelFetch(prepared, ivec3(texel, j), level);
-      float tap_depth = prepared_depth(sample_texel);
+      float tap_depth = j == 0 ? tap_depths.r : tap_depths.g;
       if (tap_depth <= 0.0) continue;
       vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
       vec3 v = y - position;
@@ -139,7 +138,8 @@ void main() {
       vec3 w = v * inversesqrt(vv);
       float cos_x = dot(w, normal);
       if (cos_x <= 0.0) continue;
-      vec3 tap_normal = decode_normal(prepared_encoded_normal(sample_texel));
+      ivec3 at = ivec3(texel, j);
+      vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
       float cos_y = -dot(w, tap_normal);
       if (cos_y <= 0.0) continue;
 #if defined(RADIOSITY_VISIBILITY)
@@ -152,7 +152,7 @@ void main() {
         weight = radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
         coverage += cos_x * weight;
       }
-      sum += min(prepared_radiance(sample_texel) * (cos_x * weight), vec3(tap_clamp));
+      sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(tap_clamp));
       ++used;
     }
   }

@@ -1,8 +1,8 @@
 // Whether a radiosity sample Y is visible from the gathering point X
 // (docs/radiosity.md, "A visibility test per sample"). Included by
-// radiosity.frag, whose prepared array it reads (level 0 holds the G-buffer's
-// normals), and the depth pyramid, whose level 0 holds both layers' linear
-// depths in one texel.
+// radiosity.frag, whose declarations it reads: the depth pyramid (level 0
+// holds both layers' linear depths) and the prepared normals (level 0 holds
+// the G-buffer's normals).
 //
 // Without it the gather counts every surface within the radius that faces X
 // and that X faces, also one that other geometry hides from X: on a scene of
@@ -30,7 +30,6 @@
 // exactly.
 #include "radiosity_visibility_constants.h"
 
-layout(binding = 10) uniform sampler2D depth_pyramid;
 layout(binding = 29) uniform sampler2DArray radiosity_backface_depth;
 
 // The pixel of camera-space point c, or (-1, -1) outside the buffer or before
@@ -70,7 +69,7 @@ bool radiosity_segment_enters_surface(vec3 a, vec3 b) {
   if (depth <= 0.0) return false;
   float z = -b.z;
   vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-  vec3 surface_normal = decode_normal(prepared_encoded_normal(texelFetch(prepared, ivec3(p, 0), 0)));
+  vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, 0), 0).xy);
   float footprint = 2.0 * frame.camera_ray_scale.y / frame.internal_size.y * z;
   return dot(b - surface, surface_normal) >= -(length(b - a) + 2.0 * footprint + 1.0e-3 * z);
 }
@@ -102,7 +101,7 @@ bool radiosity_sample_visible(vec3 x, vec3 y, int layers, int steps, float thick
       float stored_end = back_face > 0.0 ? frame.camera_ray_scale.z / back_face : depth + thickness;
       if (z >= max(stored_end, depth + 2.0 * step_length)) continue;
       vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-      vec3 surface_normal = decode_normal(prepared_encoded_normal(texelFetch(prepared, ivec3(p, j), 0)));
+      vec3 surface_normal = decode_normal(texelFetch(prepared_normal, ivec3(p, j), 0).xy);
       if (dot(q - surface, surface_normal) >= -1.0e-3 * z) continue;
       if (z < stored_end) return false;
       suspect = true;

@@ -30,9 +30,6 @@ enum class OutputDecode {
     unorm_rgb,          // RGBA8 -> RGB in [0, 1]
     shadow_depth,       // depth with compare mode, switched off while reading
     alpha,              // the A channel of an RGBA float texture (radiosity confidence)
-    // RGBA32UI of the radiosity prepare pass (shaders/radiosity_prepared.glsl):
-    prepared_radiance,  // the halves of z and w's low half -> RGB
-    prepared_normal,    // the halves of y -> RG, written as RGB with blue 0
 };
 
 struct PassOutput {

@@ -6,7 +6,6 @@
 #include "gl/readback.hpp"
 
 #include <glm/glm.hpp>
-#include <glm/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -68,21 +67,6 @@ FloatImage read_pass_output(const PassOutput& output, float near_plane) {
             for (std::size_t i = 0; i < pixels; ++i) {
                 image.pixels[3 * i] = rgba[4 * i + 2];
                 image.pixels[3 * i + 1] = rgba[4 * i + 3];
-            }
-            break;
-        }
-        case OutputDecode::prepared_radiance:
-        case OutputDecode::prepared_normal: {
-            // The halves as a half-float texture would have returned them:
-            // every half is exactly a float.
-            const auto packed = gl::read_rgba32ui(output.texture, output.level, output.layer, w, h);
-            const bool radiance = output.decode == OutputDecode::prepared_radiance;
-            image.pixels.assign(pixels * 3, 0.0f);
-            for (std::size_t i = 0; i < pixels; ++i) {
-                const glm::vec2 first = glm::unpackHalf2x16(packed[4 * i + (radiance ? 2 : 1)]);
-                image.pixels[3 * i] = first.x;
-                image.pixels[3 * i + 1] = first.y;
-                if (radiance) image.pixels[3 * i + 2] = glm::unpackHalf2x16(packed[4 * i + 3]).x;
             }
             break;
         }

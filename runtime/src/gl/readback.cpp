@@ -11,16 +11,6 @@ std::vector<float> read_floats(GLuint texture, int level, int layer, int width, 
     return values;
 }
 
-std::vector<std::uint32_t> read_rgba32ui(GLuint texture, int level, int layer, int width,
-                                         int height) {
-    std::vector<std::uint32_t> values(std::size_t(width) * std::size_t(height) * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureSubImage(texture, level, 0, 0, layer, width, height, 1, GL_RGBA_INTEGER,
-                         GL_UNSIGNED_INT, GLsizei(values.size() * sizeof(std::uint32_t)),
-                         values.data());
-    return values;
-}
-
 std::vector<std::uint8_t> read_rgba8(GLuint texture, int layer, int width, int height) {
     std::vector<std::uint8_t> values(std::size_t(width) * std::size_t(height) * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -11,9 +11,6 @@ namespace deepgi::gl {
 // `components` floats per pixel of one layer (array textures) or the texture.
 std::vector<float> read_floats(GLuint texture, int level, int layer, int width, int height,
                                GLenum format, int components);
-// RGBA32UI values of one layer (array textures) or the texture.
-std::vector<std::uint32_t> read_rgba32ui(GLuint texture, int level, int layer, int width,
-                                         int height);
 // RGBA8 bytes of one layer.
 std::vector<std::uint8_t> read_rgba8(GLuint texture, int layer, int width, int height);
 

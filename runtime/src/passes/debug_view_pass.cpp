@@ -19,7 +19,7 @@ constexpr GLuint ao_raw_binding = 13;
 constexpr GLuint radiosity_blurred_binding = 14;
 constexpr GLuint irradiance_layer0_binding = 17;
 constexpr GLuint irradiance_layer1_binding = 18;
-constexpr GLuint prepared_binding = 21;
+constexpr GLuint prepared_radiance_binding = 21;
 constexpr GLuint ao_temporal_binding = 28;
 constexpr GLuint reflection_hit_binding = 5;
 constexpr GLuint statistics_binding = 9;
@@ -41,7 +41,7 @@ public:
                                        {ao_raw_binding, "ao.raw"},
                                        {ao_blurred_binding, "ao.blurred"},
                                        {ao_temporal_binding, "ao.temporal"},
-                                       {prepared_binding, "radiosity_prepare.samples"},
+                                       {prepared_radiance_binding, "radiosity_prepare.radiance"},
                                        {radiosity_blurred_binding, "radiosity.blurred"},
                                        {irradiance_layer0_binding, "radiosity.irradiance.layer0"},
                                        {irradiance_layer1_binding, "radiosity.irradiance.layer1"},

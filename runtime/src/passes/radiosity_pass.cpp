@@ -24,7 +24,8 @@ constexpr GLuint depth_binding = 10;
 constexpr GLuint raw_binding = 17;
 constexpr GLuint history_binding = 15;
 constexpr GLuint history_key_binding = 19;
-constexpr GLuint prepared_binding = 21;  // depth, normal and B per sample
+constexpr GLuint radiance_binding = 21;
+constexpr GLuint prepared_normal_binding = 22;
 // radiosity_visibility.glsl: where each stored surface's solid ends.
 constexpr GLuint backface_binding = 29;
 // Uniform locations: the layer (both shaders), the temporal blend weight.
@@ -56,7 +57,8 @@ public:
         const RadiositySettings& radiosity = settings.radiosity;
         PassDeclaration declaration = {
             .reads = {{depth_binding, "depth_pyramid"},
-                      {prepared_binding, "radiosity_prepare.samples"},
+                      {radiance_binding, "radiosity_prepare.radiance"},
+                      {prepared_normal_binding, "radiosity_prepare.normal"},
                       {normal_binding, "gbuffer.normal"},
                       {motion_binding, "gbuffer.motion"}},
             .writes = {"radiosity.raw.layer0", "radiosity.raw.layer1",

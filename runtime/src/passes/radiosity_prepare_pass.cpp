@@ -1,10 +1,8 @@
-// Radiosity prepare (shaders/radiosity_prepare.comp): the linear depth, the
-// outgoing radiance and the normal of both G-buffer layers, packed into one
-// RGBA32UI texel per layer (shaders/radiosity_prepared.glsl) so the gather
-// reads a sample with one fetch, as rotated-grid MIP levels built like the
-// depth pyramid and with as many levels, so that texel t of level m of these
-// and of the depth pyramid describe the same level-0 pixel. The gather reads
-// them instead of the G-buffer and the pyramid (docs/radiosity.md).
+// Radiosity prepare (shaders/radiosity_prepare.comp): the outgoing radiance
+// and the normal of both G-buffer layers as rotated-grid MIP levels, built
+// like the depth pyramid and with as many levels, so that texel t of level m
+// of these and of the depth pyramid describe the same level-0 pixel. The
+// gather reads them instead of the G-buffer (docs/radiosity.md).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -20,21 +18,23 @@ namespace {
 constexpr int group_size = 8;  // local_size of radiosity_prepare.comp
 
 // Bindings of radiosity_prepare.comp. The base level samples the G-buffer,
-// the direct light, the pyramid's level 0 and last frame's E with its keys;
-// every level writes the destination image, and the levels above the base
-// read the level below through the source image.
+// the direct light and last frame's E with its keys; every level writes the
+// two destination images, and the levels above the base read the level below
+// through the source images.
 constexpr GLuint normal_binding = 0;
 constexpr GLuint albedo_binding = 1;
 constexpr GLuint emissive_binding = 2;
 constexpr GLuint motion_binding = 3;
+constexpr GLuint depth_binding = 4;
 constexpr GLuint direct_light_binding = 7;
-constexpr GLuint depth_pyramid_binding = 10;
 constexpr GLuint previous_layer0_binding = 15;
 constexpr GLuint previous_layer1_binding = 16;
 constexpr GLuint history_key_layer0_binding = 19;
 constexpr GLuint history_key_layer1_binding = 20;
-constexpr GLuint source_image = 0;
-constexpr GLuint destination_image = 1;
+constexpr GLuint radiance_source_image = 0;
+constexpr GLuint radiance_destination_image = 1;
+constexpr GLuint normal_source_image = 2;
+constexpr GLuint normal_destination_image = 3;
 
 int level_extent(int extent, int level) {
     return std::max(1, extent >> level);
@@ -64,9 +64,9 @@ public:
                           {albedo_binding, "gbuffer.albedo"},
                           {emissive_binding, "gbuffer.emissive"},
                           {motion_binding, "gbuffer.motion"},
-                          {direct_light_binding, "direct_light.radiance"},
-                          {depth_pyramid_binding, "depth_pyramid"}},
-                .writes = {"radiosity_prepare.samples"}};
+                          {depth_binding, "gbuffer.depth"},
+                          {direct_light_binding, "direct_light.radiance"}},
+                .writes = {"radiosity_prepare.radiance", "radiosity_prepare.normal"}};
     }
 
     void resize(FrameResources& frame) override {
@@ -75,8 +75,10 @@ public:
         // As many levels as the depth pyramid, which resizes first and
         // publishes its deepest level.
         levels_ = frame.integer("depth_pyramid.max_level") + 1;
-        samples_ = create_mip_array(GL_RGBA32UI, width_, height_, levels_);
-        label_texture(samples_, name(), "samples");
+        radiance_ = create_mip_array(GL_RGBA16F, width_, height_, levels_);
+        label_texture(radiance_, name(), "radiance");
+        normal_ = create_mip_array(GL_RG16F, width_, height_, levels_);
+        label_texture(normal_, name(), "normal");
     }
 
     void run(FrameResources& frame) override {
@@ -94,18 +96,19 @@ public:
                           frame.history("radiosity-key-layer0").previous());
         glBindTextureUnit(history_key_layer1_binding,
                           frame.history("radiosity-key-layer1").previous());
-        bind_level(0, destination_image, GL_WRITE_ONLY);
+        bind_level(0, radiance_destination_image, normal_destination_image, GL_WRITE_ONLY);
         dispatch_over(width_, height_);
 
         glUseProgram(reduce_.get());
         for (int level = 1; level < levels_; ++level) {
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            bind_level(level - 1, source_image, GL_READ_ONLY);
-            bind_level(level, destination_image, GL_WRITE_ONLY);
+            bind_level(level - 1, radiance_source_image, normal_source_image, GL_READ_ONLY);
+            bind_level(level, radiance_destination_image, normal_destination_image, GL_WRITE_ONLY);
             dispatch_over(level_extent(width_, level), level_extent(height_, level));
         }
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-        frame.publish("radiosity_prepare.samples", samples_.get());
+        frame.publish("radiosity_prepare.radiance", radiance_.get());
+        frame.publish("radiosity_prepare.normal", normal_.get());
     }
 
     std::vector<PassOutput> outputs(const FrameResources&) const override {
@@ -116,29 +119,29 @@ public:
                 const int h = level_extent(height_, level);
                 list.push_back({.name = fmt::format("radiosity_prepare-radiance-layer{}-level{}",
                                                     layer, level),
-                                .texture = samples_.get(),
+                                .texture = radiance_.get(),
                                 .layer = layer,
                                 .level = level,
                                 .width = w,
-                                .height = h,
-                                .decode = OutputDecode::prepared_radiance});
+                                .height = h});
                 list.push_back(
                     {.name = fmt::format("radiosity_prepare-normal-layer{}-level{}", layer, level),
-                     .texture = samples_.get(),
+                     .texture = normal_.get(),
                      .layer = layer,
                      .level = level,
                      .width = w,
                      .height = h,
                      // The octahedral encoding as stored (x, y, 0).
-                     .decode = OutputDecode::prepared_normal});
+                     .decode = OutputDecode::floats_rg_as_rgb});
             }
         }
         return list;
     }
 
 private:
-    void bind_level(int level, GLuint unit, GLenum access) const {
-        glBindImageTexture(unit, samples_.get(), level, GL_TRUE, 0, access, GL_RGBA32UI);
+    void bind_level(int level, GLuint radiance_unit, GLuint normal_unit, GLenum access) const {
+        glBindImageTexture(radiance_unit, radiance_.get(), level, GL_TRUE, 0, access, GL_RGBA16F);
+        glBindImageTexture(normal_unit, normal_.get(), level, GL_TRUE, 0, access, GL_RG16F);
     }
 
     static void dispatch_over(int width, int height) {
@@ -149,9 +152,8 @@ private:
     gl::Program base_level_;  // level 0 from the G-buffer, direct light and last frame's E
     gl::Program reduce_;      // level m + 1 from level m
     ParameterBlock<shader_shared::RadiosityPrepareParameters> parameters_;
-    // RGBA32UI array, 2 layers: linear depth, octahedral camera-space normal
-    // and B, packed as radiosity_prepared.glsl says.
-    gl::Texture samples_;
+    gl::Texture radiance_;  // RGBA16F array, 2 layers: rgb B, a 1 where a surface is
+    gl::Texture normal_;    // RG16F array, 2 layers: octahedral camera-space normal
     int width_ = 0;
     int height_ = 0;
     int levels_ = 0;
