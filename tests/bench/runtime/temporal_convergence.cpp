@@ -117,8 +117,8 @@ int main(int argc, char** argv) {
     bool check_running_mean = false;
     app.add_option("--maps", maps,
                    "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5), the "
-                   "blurred, raw and converged AO, the blurred, unblurred and converged E, depth "
-                   "and normals as PFM");
+                   "blurred, raw, unblurred (filtered) and converged AO, the blurred, unblurred "
+                   "and converged E, depth and normals as PFM");
     app.add_flag("--check-running-mean", check_running_mean,
                  "check that the filtered AO is the mean of the raw frames (a readback a frame)");
     CLI11_PARSE(app, argc, argv);
@@ -161,6 +161,10 @@ int main(int argc, char** argv) {
                                       deepgi::convergence::viewport_of(
                                           dense.read_pass_output("gbuffer-normal-layer0"),
                                           options.width, options.height));
+                    deepgi::write_pfm(
+                        folder / fmt::format("{}-ao-temporal-converged.pfm", name),
+                        deepgi::convergence::viewport_of(dense.read_pass_output("ao-temporal"),
+                                                         options.width, options.height));
                 };
             if (check_running_mean)
                 observer.frame = [&](const deepgi::Renderer& renderer) {
@@ -179,6 +183,10 @@ int main(int argc, char** argv) {
                     deepgi::write_pfm(
                         folder / fmt::format("{}-ao-raw-{}.pfm", name, n),
                         deepgi::convergence::viewport_of(renderer.read_pass_output("ao-raw"),
+                                                         options.width, options.height));
+                    deepgi::write_pfm(
+                        folder / fmt::format("{}-ao-temporal-{}.pfm", name, n),
+                        deepgi::convergence::viewport_of(renderer.read_pass_output("ao-temporal"),
                                                          options.width, options.height));
                 };
             const deepgi::convergence::StillConvergence run =
