@@ -69,6 +69,16 @@ void main() {
   // The floor keeps the inverse finite (GLSL leaves x / 0 undefined) when the
   // extent's square underflows.
   float inverse_extent_squared = world_extent > 0.0 ? 1.0 / max(world_extent * world_extent, 1.0e-30) : 0.0;
+  // The second source (E) reaches further while a still camera's history is
+  // short, back to the shared reach as the frames add up (pass_parameters.h):
+  // its noise falls with the frames, and the blur's bias where E curves does
+  // not, so a long mean is blurred as little as the AO.
+  float inverse_second_extent_squared = inverse_extent_squared;
+  if (world_extent > 0.0 && blur.second_extent_start > 0.0) {
+    float frames = float(frame.temporal_frame) + 1.0;
+    float second_extent = max(world_extent, blur.second_extent_start / frames);
+    inverse_second_extent_squared = 1.0 / max(second_extent * second_extent, 1.0e-30);
+  }
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = centre_key.xyz;
   ivec2 size = textureSize(source0, 0);
@@ -76,6 +86,7 @@ void main() {
   float total_weight = BLUR_WEIGHTS[BLUR_RADIUS];
   vec4 sum0 = centre0 * total_weight;
 #if BLUR_SOURCES > 1
+  float total_weight1 = total_weight;
   vec4 sum1 = centre1 * total_weight;
 #endif
   for (int k = -BLUR_RADIUS; k <= BLUR_RADIUS; ++k) {
@@ -90,16 +101,19 @@ void main() {
     float normal_weight = pow(max(dot(tap_normal, normal), 0.0), normal_power);
     vec3 offset = tap_position - position;
     float plane_weight = max(0.0, 1.0 - abs(dot(offset, normal)) / plane_tolerance);
-    float distance_weight = max(0.0, 1.0 - dot(offset, offset) * inverse_extent_squared);
-    float weight = BLUR_WEIGHTS[k + BLUR_RADIUS] * depth_weight * normal_weight * plane_weight * distance_weight;
+    float edge_weight = BLUR_WEIGHTS[k + BLUR_RADIUS] * depth_weight * normal_weight * plane_weight;
+    float distance_squared = dot(offset, offset);
+    float weight = edge_weight * max(0.0, 1.0 - distance_squared * inverse_extent_squared);
     sum0 += texelFetch(source0, tap, 0) * weight;
-#if BLUR_SOURCES > 1
-    sum1 += texelFetch(source1, tap, 0) * weight;
-#endif
     total_weight += weight;
+#if BLUR_SOURCES > 1
+    float weight1 = edge_weight * max(0.0, 1.0 - distance_squared * inverse_second_extent_squared);
+    sum1 += texelFetch(source1, tap, 0) * weight1;
+    total_weight1 += weight1;
+#endif
   }
   out_value0 = sum0 / total_weight;
 #if BLUR_SOURCES > 1
-  out_value1 = sum1 / total_weight;
+  out_value1 = sum1 / total_weight1;
 #endif
 }

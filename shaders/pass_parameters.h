@@ -48,6 +48,15 @@ struct BlurParameters {
   float normal_power;     // weight * max(dot(n_tap, n_centre), 0)^power
   float plane_tolerance;  // distance from the centre's tangent plane, the same fraction
   float world_extent;     // m from the centre at which a tap weighs nothing (0: no limit)
+
+  // The second source's (radiosity E's) reach while a still camera's history
+  // is short: max(world_extent, second_extent_start / n) after
+  // n = temporal_frame + 1 frames (docs/radiosity.md, "The blur"); 0: the
+  // second source shares world_extent.
+  float second_extent_start;
+  float unused0;
+  float unused1;
+  float unused2;
 };
 
 // The anti-aliasing after the tonemap (antialias.frag).

@@ -41,7 +41,7 @@ static_assert(sizeof(SaoParameters) == 32 && offsetof(SaoParameters, max_mip) ==
 static_assert(sizeof(RadiosityGatherParameters) == 32 &&
               offsetof(RadiosityGatherParameters, layers) == 16);
 static_assert(sizeof(RadiosityPrepareParameters) == 16);
-static_assert(sizeof(BlurParameters) == 16);
+static_assert(sizeof(BlurParameters) == 32);
 static_assert(sizeof(AntialiasParameters) == 16);
 static_assert(sizeof(ReflectionParameters) == 48 &&
               offsetof(ReflectionParameters, max_level) == 16 &&

@@ -58,16 +58,24 @@ struct Signal {
     std::vector<float> values;
 };
 
+// The second source's own reach (BilateralBlur::second_extent_start) and the
+// frame it is read at; start 0: it shares the first's.
+struct SecondReach {
+    float start = 0.0f;
+    int temporal_frame = 0;
+};
+
 // Runs the blur on every source at once (one blur, shared weights) and
 // returns the outputs, in the sources' order. Float formats throughout, so
 // only the blur's arithmetic separates it from the CPU evaluation.
 std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& guide,
                                      const std::vector<Signal>& sources,
                                      const BilateralBlurParameters& parameters = {},
-                                     float world_extent = 0.0f) {
+                                     float world_extent = 0.0f, const SecondReach& second = {}) {
     const int w = guide.width;
     const int h = guide.height;
     shader_shared::FrameConstants constants{};
+    constants.temporal_frame = second.temporal_frame;
     constants.internal_size = {float(w), float(h), 1.0f / float(w), 1.0f / float(h)};
     constants.camera_ray_scale = {0.7f, 0.45f, 0.05f, 0.0f};
     gl::Buffer frame = gl::create_buffer();
@@ -100,6 +108,7 @@ std::vector<Signal> run_blur_sources(const ShaderLoader& loader, const Guide& gu
 
     BilateralBlur blur = create_bilateral_blur(loader, int(sources.size()), parameters);
     blur.world_extent = world_extent;
+    blur.second_extent_start = second.start;
     resize_bilateral_blur(blur, w, h, formats);
     run_bilateral_blur(blur, input_names, depth.get(), normal.get(), empty.get());
     std::vector<Signal> outputs;
@@ -451,6 +460,44 @@ TEST_CASE("blur: two sources blurred together get the weights each gets alone", 
                          together[0].values) <= 1e-6f);
     CHECK(max_difference(run_blur_sources(loader, guide, {radiosity}).front().values,
                          together[1].values) <= 20.0f * 1e-6f);
+}
+
+TEST_CASE(
+    "blur: the second source reaches max(extent, start / n) after n frames, the first the "
+    "extent",
+    "[blur]") {
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    const Guide guide = rough_patchwork(61, 43);
+    const Signal ao{1, random_values(61 * 43, 3)};
+    const Signal e{1, random_values(61 * 43, 8)};
+    // Neighbours lie 0.023 to 0.09 m apart (the test above): 0.03 m keeps
+    // few taps, 0.08 m most.
+    const float extent = 0.03f;
+    auto alone = [&](const Signal& source, float reach) {
+        return run_blur_sources(loader, guide, {source}, {}, reach).front().values;
+    };
+    const std::vector<float> narrow = alone(e, extent);
+    const std::vector<float> wide = alone(e, 0.08f);
+    REQUIRE(max_difference(narrow, wide) > 0.05f);  // the two reaches differ here
+    auto check = [&](const SecondReach& second, const std::vector<float>& expected) {
+        const std::vector<Signal> out =
+            run_blur_sources(loader, guide, {ao, e}, {}, extent, second);
+        CHECK(max_difference(out[0].values, alone(ao, extent)) <= 1e-6f);
+        CHECK(max_difference(out[1].values, expected) <= 1e-5f);
+    };
+    SECTION("on the first frame, start") {
+        check({.start = 0.08f}, wide);
+    }
+    SECTION("0.32 / 4 = 0.08 after 4 frames") {
+        check({.start = 0.32f, .temporal_frame = 3}, wide);
+    }
+    SECTION("never below the extent: 0.32 / 100 after 100 frames") {
+        check({.start = 0.32f, .temporal_frame = 99}, narrow);
+    }
+    SECTION("start 0: the extent") {
+        check({}, narrow);
+    }
 }
 
 TEST_CASE("blur: a blur of 0 or 3 sources, or with mismatched inputs, is refused", "[blur]") {

@@ -26,6 +26,15 @@ constexpr GLuint key_binding = 26;
 // ivec2 uniform: (1, 0) horizontal, (0, 1) vertical.
 constexpr GLint direction_location = 23;
 
+// E's reach on the first frame after history was invalidated, in radiosity
+// radii, divided by the frames since and never below the AO's reach
+// (docs/radiosity.md, "The blur"). At the auto lengths the AO's reach is
+// 0.083 radiosity radii, which this meets at 48 frames, so a mean of 64
+// frames or more, and the accuracy against the ray tracer, are blurred as
+// before; at 16 frames E reaches 0.25 radii, where a still camera's E after
+// 16 frames was closest to its converged image (cornell, 160x90).
+constexpr float early_radiosity_reach = 4.0f;
+
 void check_parameters(const BilateralBlurParameters& parameters) {
     auto positive = [](float value) { return std::isfinite(value) && value > 0.0f; };
     if (!positive(parameters.depth_tolerance) || !positive(parameters.normal_power) ||
@@ -63,7 +72,7 @@ public:
                           {depth_binding, "depth_pyramid"},
                           {normal_binding, "gbuffer.normal"}},
                 .writes = {"ao.blurred", "radiosity.blurred"},
-                .value_reads = {"sao.radius"}};
+                .value_reads = {"sao.radius", "radiosity.radius"}};
     }
 
     void resize(FrameResources& frame) override {
@@ -80,6 +89,8 @@ public:
     void run(FrameResources& frame) override {
         // The extent is a fraction of the AO radius, which is the SAO pass's.
         apply_blur_settings(blur_, frame.settings->blur, frame.value("sao.radius"));
+        // E's reach while the history is short, in radiosity radii.
+        blur_.second_extent_start = early_radiosity_reach * frame.value("radiosity.radius");
         const GLuint sources[] = {frame.texture("ao.temporal"),
                                   frame.texture("radiosity.irradiance.layer0")};
         run_bilateral_blur(blur_, sources, frame.texture("depth_pyramid"),
@@ -169,7 +180,8 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
     blur.block.bind({.depth_tolerance = blur.parameters.depth_tolerance,
                      .normal_power = blur.parameters.normal_power,
                      .plane_tolerance = blur.parameters.plane_tolerance,
-                     .world_extent = blur.world_extent});
+                     .world_extent = blur.world_extent,
+                     .second_extent_start = blur.second_extent_start});
     glBindTextureUnit(key_binding, blur.key.get());
 
     for (int i = 0; i < blur.source_count; ++i)

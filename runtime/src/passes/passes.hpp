@@ -80,6 +80,10 @@ struct BilateralBlur {
     // Metres: a tap this far from the centre weighs nothing (0: no limit).
     // The settings give it as a fraction of the AO radius (BlurSettings::extent).
     float world_extent = 0.0f;
+    // Metres: the second source's reach on the first frame after history was
+    // invalidated, divided by the frames since, never below world_extent
+    // (BlurParameters in shaders/pass_parameters.h); 0: it shares world_extent.
+    float second_extent_start = 0.0f;
     ParameterBlock<shader_shared::BlurParameters> block;  // the above, as the shader reads them
 };
 // Takes the settings' edge weights and world extent, the latter a fraction of

@@ -66,7 +66,8 @@ public:
             // The pyramid's MIP selection, as SAO uses it.
             .value_reads = {"depth_pyramid.q"},
             // How many layers backface_depth renders for the visibility test.
-            .value_writes = {{"radiosity.layers", float(radiosity.layers)},
+            .value_writes = {{"radiosity.radius", radiosity.radius},
+                             {"radiosity.layers", float(radiosity.layers)},
                              {"radiosity.visibility_steps", float(radiosity.visibility_steps)}}};
         if (radiosity.visibility_steps > 0) {
             // The visibility test treats stored surfaces as solids as the AO

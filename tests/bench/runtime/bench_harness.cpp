@@ -92,7 +92,9 @@ std::vector<PassMedians> time_alternated(const std::vector<Configuration>& confi
 std::string set_settings_note(const Options& options) {
     std::string note;
     for (const auto& [row, value] : options.set_values)
-        note += fmt::format(" | {} = {}", row->name, value);
+        note += accepts_auto(*row) && value == auto_length
+                    ? fmt::format(" | {} = auto", row->name)
+                    : fmt::format(" | {} = {}", row->name, value);
     return note;
 }
 

@@ -1,6 +1,8 @@
 // temporal_convergence: how fast a still camera's blurred E and AO approach
 // the same estimator's converged image (docs/radiosity.md, "How fast a still
-// camera converges"), as a table per scene at default settings. The
+// camera converges"), as a table per scene at the deepgi command line's
+// defaults: lengths `auto`, resolved for each scene (--library-lengths: the
+// library's fixed 0.5 m AO and 1 m radiosity radii instead). The
 // measurement and its figures are tests/runtime/still_convergence.hpp's,
 // shared with the ctest that checks the targets.
 // --maps DIR writes where the AO error sits (docs/deep-sao.md, "How fast the
@@ -115,12 +117,16 @@ int main(int argc, char** argv) {
                    "first point of the frame sequence (the renderer's temporal-offset setting)");
     std::string maps;
     bool check_running_mean = false;
+    bool library_lengths = false;
     app.add_option("--maps", maps,
                    "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5), the "
                    "blurred, raw, unblurred (filtered) and converged AO, the blurred, unblurred "
                    "and converged E, depth and normals as PFM");
     app.add_flag("--check-running-mean", check_running_mean,
                  "check that the filtered AO is the mean of the raw frames (a readback a frame)");
+    app.add_flag("--library-lengths", library_lengths,
+                 "lengths at the library's defaults (AO radius 0.5 m, radiosity 1 m) instead of "
+                 "the command line's auto, a fraction of each scene's size; --set still wins");
     CLI11_PARSE(app, argc, argv);
     return deepgi::bench::run("temporal_convergence", [&] {
         deepgi::bench::finish(options);
@@ -129,6 +135,10 @@ int main(int argc, char** argv) {
         if (converged_frames < 1) throw deepgi::InputError("--converged-frames must be >= 1");
         if (converged_taps < 1) throw deepgi::InputError("--converged-taps must be >= 1");
         deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
+        if (!library_lengths) {
+            settings = deepgi::convergence::with_auto_lengths(settings);
+            for (const auto& [row, value] : options.set_values) row->set(settings, value);
+        }
         settings.rotation_seed = rotation_seed;
         settings.temporal_offset = temporal_offset;
         deepgi::validate(settings);
@@ -203,10 +213,16 @@ int main(int argc, char** argv) {
                     100.0 * run.converged_ao_grain);
             }
             fmt::print("<!-- {}: {} flat pixels of {} -->\n", name, run.flat_pixels, run.pixels);
+            const float radius = deepgi::scene_bounding_radius(scene);
+            for (const std::string& line : deepgi::describe_auto_lengths(
+                     settings, deepgi::resolve_auto_lengths(settings, radius), radius))
+                fmt::print("<!-- {}: {} -->\n", name, line);
         }
-        fmt::print("\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{}{}\n",
-                   converged_taps, converged_frames, deepgi::query_context_info().renderer,
-                   options.width, options.height, deepgi::bench::set_settings_note(options));
+        fmt::print(
+            "\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{} | lengths {}{}\n",
+            converged_taps, converged_frames, deepgi::query_context_info().renderer, options.width,
+            options.height, library_lengths ? "the library's" : "auto",
+            deepgi::bench::set_settings_note(options));
         return 0;
     });
 }
