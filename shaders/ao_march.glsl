@@ -36,15 +36,29 @@
 //     of depth, the reconstruction error of a stored point and its normal,
 //     so that a ray leaving X's own surface at a grazing angle does not hit it.
 // The hit distance is where the last segment crosses that plane.
+//
+// Not where the stored surface and X's meet at a convex edge: X on or behind
+// the stored surface's plane and the stored point on or behind X's (both
+// within the same tolerance). The solid fills the whole frustum of the
+// stored pixel, which at such an edge (the corner pixel of a pillar's front
+// face, X on its side) reaches past the edge, beside X's own face, where
+// nothing is; a ray leaving X rises above X's plane, where no object that
+// both surfaces bound can be. At a crease (a wall beside a floor) X is in
+// front of the wall's plane, so its hits stay (docs/deep-sao.md, "The
+// convex-edge test").
 float march_layer_hit(float depth, float back_face, vec2 encoded_normal, ivec2 p, vec3 q, float z, float t,
-                      float previous, vec3 position, vec3 direction, float step_length, float bias) {
+                      float previous, vec3 position, vec3 normal, vec3 direction, float step_length,
+                      float bias) {
   if (depth <= 0.0 || z <= depth) return -1.0;
   float solid_end = back_face > 0.0 ? max(back_face, depth + 2.0 * step_length) : depth + sao.thickness;
   if (z >= solid_end) return -1.0;
   vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 surface_normal = decode_normal(encoded_normal);
+  float tolerance = bias + 1.0e-3 * z;
   float below = dot(q - surface, surface_normal);
-  if (below >= -(bias + 1.0e-3 * z)) return -1.0;
+  if (below >= -tolerance) return -1.0;
+  if (dot(position - surface, surface_normal) < tolerance && dot(surface - position, normal) < tolerance)
+    return -1.0;
   float above = dot(position + direction * previous - surface, surface_normal);
   return above > 0.0 ? previous + (t - previous) * above / (above - below) : t;
 }
@@ -86,11 +100,11 @@ float march_visibility(uvec2 pixel, vec3 position, vec3 normal, float radius, fl
       // was most of the pass on llvmpipe (docs/ao-accuracy.md).
       vec4 solids = texelFetch(depth_pyramid, p, 0);
       vec4 normals = texelFetch(normal_pair, p, 0);
-      hit = march_layer_hit(solids.r, solids.b, normals.xy, p, q, z, t, previous, position, direction, step_length,
-                            bias);
+      hit = march_layer_hit(solids.r, solids.b, normals.xy, p, q, z, t, previous, position, normal, direction,
+                            step_length, bias);
 #if AO_LAYERS > 1
       if (hit < 0.0)
-        hit = march_layer_hit(solids.g, solids.a, normals.zw, p, q, z, t, previous, position, direction,
+        hit = march_layer_hit(solids.g, solids.a, normals.zw, p, q, z, t, previous, position, normal, direction,
                               step_length, bias);
 #endif
       previous = t;

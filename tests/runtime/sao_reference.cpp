@@ -24,7 +24,8 @@ using uint = std::uint32_t;
 // The march (sao.frag, march_visibility): AV = 1 - mean f(d) over cosine-
 // weighted rays, each marched until it is first inside the solid behind a
 // stored surface: to its back face (at least two steps deep), or `thickness`
-// deep where it has none.
+// deep where it has none; not where that surface and X's meet at a convex
+// edge.
 float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const SaoInputs& inputs,
                        const AoSettings& settings) {
     const FloatImage& base = inputs.pyramid.at(0);
@@ -77,8 +78,16 @@ float march_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, const
                                                normals.at(px, py, 2));
                 // Behind the stored depth, within the slab, and behind the
                 // surface's plane by more than its reconstruction error.
+                const float tolerance = settings.bias + 1.0e-3f * z;
                 const float below = glm::dot(q - surface, surface_normal);
-                if (below >= -(settings.bias + 1.0e-3f * z)) continue;
+                if (below >= -tolerance) continue;
+                // Not where that surface and X's meet at a convex edge: each
+                // on or behind the other's plane. The pixel's solid reaches
+                // past the edge there, beside X's face, where a ray leaving X
+                // finds nothing.
+                if (glm::dot(position - surface, surface_normal) < tolerance &&
+                    glm::dot(surface - position, normal) < tolerance)
+                    continue;
                 const float above =
                     glm::dot(position + direction * previous - surface, surface_normal);
                 hit = above > 0.0f ? previous + (t - previous) * above / (above - below) : t;
