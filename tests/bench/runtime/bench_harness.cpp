@@ -51,8 +51,7 @@ void finish(Options& options) {
     }
 }
 
-RenderSettings settings_for(const Options& options) {
-    RenderSettings settings;
+RenderSettings settings_for(const Options& options, RenderSettings settings) {
     settings.width = options.width;
     settings.height = options.height;
     settings.timing = options.timing_mode;

@@ -41,9 +41,9 @@ void add_options(CLI::App& app, Options& options);
 // Checks the flags after parsing and fills width, height and timing_mode;
 // throws InputError with one line naming the flag.
 void finish(Options& options);
-// RenderSettings at the options' size and timing mode, with the --set values.
+// `base` at the options' size and timing mode, with the --set values on top.
 // A benchmark's own flags and configurations are applied after it, so they win.
-RenderSettings settings_for(const Options& options);
+RenderSettings settings_for(const Options& options, RenderSettings base = {});
 
 double median(std::vector<double> values);
 

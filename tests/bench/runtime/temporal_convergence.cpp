@@ -134,11 +134,10 @@ int main(int argc, char** argv) {
             if (n < 1) throw deepgi::InputError("--frames-list: counts must be >= 1");
         if (converged_frames < 1) throw deepgi::InputError("--converged-frames must be >= 1");
         if (converged_taps < 1) throw deepgi::InputError("--converged-taps must be >= 1");
-        deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
-        if (!library_lengths) {
-            settings = deepgi::convergence::with_auto_lengths(settings);
-            for (const auto& [row, value] : options.set_values) row->set(settings, value);
-        }
+        // --set values go on top of the lengths, so an explicit length wins.
+        deepgi::RenderSettings settings = deepgi::bench::settings_for(
+            options, library_lengths ? deepgi::RenderSettings{}
+                                     : deepgi::convergence::with_auto_lengths({}));
         settings.rotation_seed = rotation_seed;
         settings.temporal_offset = temporal_offset;
         deepgi::validate(settings);
