@@ -69,7 +69,27 @@ struct Options {
     std::uint64_t max_gpu_mib = 4096;        // render-target estimate limit
     std::string script;                      // window: --script FILE
     std::string screenshot_directory = ".";  // window: where F12 writes
+    std::string shaders;                     // --shaders DIR; empty: the build's only
 };
+
+// --shaders names a folder of edited shader copies that override the build's
+// file by file. A folder holding none of the renderer's shader files is a
+// mistake (a typo, the wrong level), not a request for the build's shaders.
+void check_shader_folder(const std::string& folder) {
+    if (folder.empty()) return;
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+        throw deepgi::InputError(fmt::format("--shaders {}: not a folder", folder));
+    const fs::path sources =
+        deepgi::ShaderLoader::from_build_configuration().include_dirs().front();
+    for (const auto& entry : fs::directory_iterator(folder, error)) {
+        if (entry.is_regular_file(error) && fs::is_regular_file(sources / entry.path().filename()))
+            return;
+    }
+    throw deepgi::InputError(
+        fmt::format("--shaders {}: holds none of the renderer's shader files", folder));
+}
 
 // Whether an option not given means `auto` on this command line: every
 // length (it follows the scene), and the exposure (docs/deepgi.md,
@@ -146,11 +166,12 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
     scene.default_camera = deepgi::select_camera(scene, options.camera);
     if (options.hidden_window) {
         deepgi::render_hidden_window(scene, settings, options.frames, options.camera_path,
-                                     options.output);
+                                     options.output, options.shaders);
         return 0;
     }
     deepgi::HeadlessContext context;
-    deepgi::Renderer renderer(scene, settings, deepgi::ShaderLoader::from_build_configuration());
+    deepgi::Renderer renderer(scene, settings,
+                              deepgi::ShaderLoader::from_build_configuration(options.shaders));
     // Information goes to standard output, unless the PNG does (--output -,
     // or a path that is standard output, such as a link to /dev/stdout).
     struct stat stdout_status {
@@ -285,6 +306,10 @@ int main(int argc, char** argv) {
     app.add_option("--screenshot-dir", options.screenshot_directory,
                    "Window only: F12 writes a dated folder (PNG + pass PFMs) in this directory")
         ->default_str("the current directory");
+    app.add_option("--shaders", options.shaders,
+                   "A folder of edited shader copies, searched before the build's shaders: "
+                   "try a shader change without editing the sources")
+        ->default_str("none");
     app.add_flag("--gl-debug", options.gl_debug,
                  "Turn GL errors into an error that names the pass (KHR_debug callback)");
     // Which indirect terms compose adds (docs/radiosity.md, "What each part adds").
@@ -351,6 +376,7 @@ int main(int argc, char** argv) {
 
     return run_reporting_errors("deepgi", [&] {
         const deepgi::RenderSettings settings = settings_from(options);
+        check_shader_folder(options.shaders);
         deepgi::check_frame_limits(settings, options.max_gpu_mib << 20);
         if (options.headless) {
             for (const char* name : {"--script", "--screenshot-dir"})
@@ -377,6 +403,7 @@ int main(int argc, char** argv) {
         window.camera = options.camera;
         window.script = options.script;
         window.screenshot_directory = options.screenshot_directory;
+        window.shaders = options.shaders;
         return deepgi::run_interactive(window, settings);
     });
 }

@@ -2,6 +2,7 @@
 // and writes nothing; the same command twice gives the same bytes; --dump
 // writes every pass output finite and inside its documented range.
 #include "deepgi/image_io.hpp"
+#include "deepgi/shader_loader.hpp"
 #include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
@@ -205,6 +206,56 @@ TEST_CASE("cli: the same command twice writes identical images", "[runtime][cli]
     }
 }
 
+TEST_CASE("cli: --shaders overrides the build's shaders file by file", "[runtime][cli]") {
+    const fs::path dir = scratch();
+    const fs::path sources =
+        deepgi::ShaderLoader::from_build_configuration().include_dirs().front();
+    const fs::path copies = dir / "shader-copies";
+    fs::remove_all(copies);
+    fs::create_directories(copies);
+    fs::copy(sources, copies, fs::copy_options::recursive);
+    const std::string common = "--headless --scene cornell --size 160x90 --frames 2";
+
+    SECTION("unchanged copies render the build's image byte for byte") {
+        REQUIRE(run_deepgi(common + " --output '" + (dir / "build.png").string() + "'").status ==
+                0);
+        REQUIRE(run_deepgi(common + " --shaders '" + copies.string() + "' --output '" +
+                           (dir / "copies.png").string() + "'")
+                    .status == 0);
+        const std::string build_image = read_bytes(dir / "build.png");
+        REQUIRE(build_image.size() > 100);
+        REQUIRE(build_image == read_bytes(dir / "copies.png"));
+    }
+    SECTION("an edited copy is the one compiled") {
+        // A copy that cannot compile: the error must name the copy, not the
+        // build's file, which would compile.
+        const fs::path edited = copies / "tonemap.frag";
+        std::string text = read_bytes(edited);
+        const auto version_end = text.find('\n');
+        REQUIRE(version_end != std::string::npos);
+        text.insert(version_end + 1, "#error edited copy\n");
+        std::ofstream(edited, std::ios::binary | std::ios::trunc) << text;
+        const RunResult result = run_deepgi(common + " --shaders '" + copies.string() +
+                                            "' --output '" + (dir / "edited.png").string() + "'");
+        INFO(result.stderr_text);
+        REQUIRE(result.status != 0);
+        REQUIRE(result.stderr_text.find(edited.lexically_normal().string()) != std::string::npos);
+        REQUIRE_FALSE(fs::exists(dir / "edited.png"));
+    }
+    SECTION("a folder that is not one, or holds no shader, is bad input") {
+        require_one_line_error(
+            fmt::format("--headless --size 16x9 --shaders '{}'", (dir / "missing").string()),
+            "not a folder");
+        const fs::path unrelated = dir / "unrelated";
+        fs::create_directories(unrelated);
+        std::ofstream(unrelated / "notes.txt") << "no shaders here";
+        require_one_line_error(
+            fmt::format("--headless --size 16x9 --shaders '{}'", unrelated.string()),
+            "holds none of the renderer's shader files");
+    }
+    fs::remove_all(copies);
+}
+
 namespace {
 
 // The range docs/deepgi.md ("--dump DIR") gives each dumped output, by file
@@ -277,8 +328,8 @@ const std::vector<DumpRange>& dump_ranges() {
          [](const float* p) {
              return in_range(std::min({p[0], p[1], p[2]}), 0, inf);
          }},
-        // Decoded octahedral normals, averaged over the MIP levels' texels:
-        // at most unit length.
+        // The octahedral encoding as stored, (x, y, 0), every level's texel a
+        // copy of one level-0 pixel's: |x| + |y| <= 1, so at most unit length.
         {"radiosity_prepare-normal-layer", 3,
          [](const float* p) {
              return in_range(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 0, 1.01f);

@@ -26,9 +26,10 @@
 namespace deepgi {
 
 void render_hidden_window(const Scene& scene, const RenderSettings& settings, int frames,
-                          bool follow_camera_path, const std::filesystem::path& output_png) {
+                          bool follow_camera_path, const std::filesystem::path& output_png,
+                          const std::filesystem::path& shaders) {
     WindowContext window(settings.width, settings.height, "deepgi", false);
-    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration(shaders));
     for (int frame = 0; frame < frames; ++frame) {
         // As headless: the next camera too, for the delay generator.
         if (follow_camera_path)

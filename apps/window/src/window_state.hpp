@@ -24,7 +24,7 @@ struct FlyCamera {
 struct WindowState {
     explicit WindowState(const WindowOptions& window_options) : options(window_options) {}
     const WindowOptions& options;
-    ShaderLoader loader = ShaderLoader::from_build_configuration();
+    ShaderLoader loader = ShaderLoader::from_build_configuration(options.shaders);
     Scene scene;
     std::unique_ptr<Renderer> renderer;
     RenderSettings settings;

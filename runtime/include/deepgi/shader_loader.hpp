@@ -28,7 +28,10 @@ public:
     explicit ShaderLoader(std::vector<std::filesystem::path> include_dirs);
 
     // The directories the build configured: shaders/ and the generated headers.
-    static ShaderLoader from_build_configuration();
+    // `first`, when not empty, is searched before them, so a folder of edited
+    // copies overrides the build's shaders file by file (deepgi --shaders):
+    // a study can change a shader without touching the sources tests read.
+    static ShaderLoader from_build_configuration(std::filesystem::path first = {});
 
     // `defines` is inserted right after the #version line (one #define per line).
     ExpandedShaderSource expand(const std::string& file, const std::string& defines = {}) const;

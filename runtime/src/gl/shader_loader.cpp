@@ -78,9 +78,9 @@ ShaderLoader::ShaderLoader(std::vector<fs::path> include_dirs) {
     }
 }
 
-ShaderLoader ShaderLoader::from_build_configuration() {
-    return ShaderLoader(
-        {fs::path(DEEPGI_SHADER_SOURCE_DIR), fs::path(DEEPGI_GENERATED_SHADER_DIR)});
+ShaderLoader ShaderLoader::from_build_configuration(fs::path first) {
+    return ShaderLoader({std::move(first), fs::path(DEEPGI_SHADER_SOURCE_DIR),
+                         fs::path(DEEPGI_GENERATED_SHADER_DIR)});
 }
 
 fs::path ShaderLoader::resolve(const std::string& name, const fs::path& including_dir) const {

@@ -13,6 +13,7 @@ struct WindowOptions {
     std::string camera;             // a file camera's name or index; empty: the default
     std::filesystem::path script;   // --script FILE (window_controls.hpp); empty: none
     std::filesystem::path screenshot_directory = ".";  // where F12's dated folders go
+    std::filesystem::path shaders;  // --shaders DIR, searched before the build's; empty: none
 };
 
 // Opens a window with a fly camera, the keys of window_controls.hpp, a Dear
@@ -24,6 +25,7 @@ int run_interactive(const WindowOptions& options, const RenderSettings& settings
 // context and writes the PNG: the same image as the EGL path, used to test
 // that both contexts agree.
 void render_hidden_window(const Scene& scene, const RenderSettings& settings, int frames,
-                          bool follow_camera_path, const std::filesystem::path& output_png);
+                          bool follow_camera_path, const std::filesystem::path& output_png,
+                          const std::filesystem::path& shaders = {});
 
 }  // namespace deepgi
