@@ -51,7 +51,7 @@ RenderSettings accuracy_settings(RadiosityMethod method) {
 // the scene's bounding radius.
 RenderSettings with_scene_lengths(RenderSettings settings, const Scene& scene) {
     settings.radiosity.radius = settings.min_separation = settings.ao.radius = auto_length;
-    return resolve_auto_lengths(settings, scene_bounding_radius(scene));
+    return resolve_auto_lengths(settings, scene_scale(scene));
 }
 
 struct Error {
