@@ -182,7 +182,7 @@ int run_headless(const Options& options, const deepgi::RenderSettings& settings)
                                   stdout_status.st_dev == output_status.st_dev &&
                                   stdout_status.st_ino == output_status.st_ino);
     for (const std::string& line : deepgi::describe_auto_lengths(
-             settings, renderer.settings_in_use(), deepgi::scene_bounding_radius(scene)))
+             settings, renderer.settings_in_use(), deepgi::scene_scale(scene)))
         fmt::print(png_on_stdout ? stderr : stdout, "scene scale: {}\n", line);
     // A labelled bar for long runs, only where someone watches.
     const bool show_progress = options.frames > 1 && isatty(fileno(stderr)) != 0;

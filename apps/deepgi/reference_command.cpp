@@ -156,11 +156,10 @@ int run(const ReferenceOptions& options) {
         phases->push_back("reflections");
     }
     const deepgi::RenderSettings given = settings.render;
-    settings.render =
-        deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
+    settings.render = deepgi::resolve_auto_lengths(settings.render, deepgi::scene_scale(scene));
     settings.radiosity_radius = settings.render.radiosity.radius;
-    for (const std::string& line : deepgi::describe_auto_lengths(
-             given, settings.render, deepgi::scene_bounding_radius(scene)))
+    for (const std::string& line :
+         deepgi::describe_auto_lengths(given, settings.render, deepgi::scene_scale(scene)))
         fmt::print("scene scale: {}\n", line);
     const auto start = std::chrono::steady_clock::now();
     const deepgi::ReferenceImages images =

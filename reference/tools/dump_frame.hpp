@@ -43,7 +43,7 @@ inline deepgi::RenderSettings with_scene_lengths(deepgi::RenderSettings settings
     for (const deepgi::NumericSetting& row : deepgi::numeric_settings())
         if (deepgi::is_scene_length(row)) row.set(settings, deepgi::auto_length);
     settings.radiosity.radius = radiosity_radius;
-    return deepgi::resolve_auto_lengths(settings, deepgi::scene_bounding_radius(scene));
+    return deepgi::resolve_auto_lengths(settings, deepgi::scene_scale(scene));
 }
 
 }  // namespace deepgi_tools

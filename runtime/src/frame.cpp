@@ -300,7 +300,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const Sha
     : state_(std::make_unique<RendererState>(scene, settings, loader)) {
     validate(settings);
     RendererState& state = *state_;
-    state.in_use = resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
+    state.in_use = resolve_auto_lengths(settings, scene_scale(state.scene));
     state.scene_gpu = upload_scene(state.scene);
     state.empty_vertex_array = gl::create_vertex_array();
     state.frame_constants = gl::create_buffer();
@@ -378,8 +378,7 @@ void Renderer::set_settings(const RenderSettings& settings) {
     if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
     // Which passes run, and what they read, can change with any setting
     // (the AO method decides whether the back faces are needed).
-    const RenderSettings in_use =
-        resolve_auto_lengths(settings, scene_bounding_radius(state.scene));
+    const RenderSettings in_use = resolve_auto_lengths(settings, scene_scale(state.scene));
     std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, in_use);
     state.settings = settings;
     state.in_use = in_use;
@@ -402,6 +401,13 @@ float scene_bounding_radius(const Scene& scene) {
     const float radius = 0.5f * glm::length(scene.bounds.max - scene.bounds.min);
     // An empty or degenerate scene still gets positive lengths.
     return std::isfinite(radius) && radius > 0.0f ? radius : 1.0f;
+}
+
+SceneScale scene_scale(const Scene& scene) {
+    const glm::vec3 size = scene.bounds.max - scene.bounds.min;
+    const float smallest = std::min({size.x, size.y, size.z});
+    return {.bounding_radius = scene_bounding_radius(scene),
+            .smallest_extent = std::isfinite(smallest) ? std::max(smallest, 0.0f) : 0.0f};
 }
 
 void Renderer::set_key_light(const KeyLight& light) {

@@ -221,22 +221,37 @@ float parse_setting_value(const NumericSetting& setting, std::string_view text) 
     return float(value);
 }
 
-RenderSettings resolve_auto_lengths(RenderSettings settings, float scene_radius) {
+float auto_length_value(const NumericSetting& setting, const SceneScale& scale) {
+    const float length = setting.scene_fraction * scale.bounding_radius;
+    if (setting.extent_fraction <= 0.0f) return length;
+    // A single quad has no thickness; its extent is taken as 0.2 R.
+    constexpr float flat_extent_fraction = 0.2f;
+    const float extent =
+        std::max(scale.smallest_extent, flat_extent_fraction * scale.bounding_radius);
+    return std::min(length, setting.extent_fraction * extent);
+}
+
+RenderSettings resolve_auto_lengths(RenderSettings settings, const SceneScale& scale) {
     for (const NumericSetting& setting : numeric_settings()) {
         if (is_scene_length(setting) && setting.get(settings) == auto_length)
-            setting.set(settings, setting.scene_fraction * scene_radius);
+            setting.set(settings, auto_length_value(setting, scale));
     }
     return settings;
 }
 
 std::vector<std::string> describe_auto_lengths(const RenderSettings& given,
-                                               const RenderSettings& in_use, float scene_radius) {
+                                               const RenderSettings& in_use,
+                                               const SceneScale& scale) {
     std::vector<std::string> lines;
     for (const NumericSetting& setting : numeric_settings()) {
         if (!is_scene_length(setting) || setting.get(given) != auto_length) continue;
-        lines.push_back(fmt::format("{} auto = {:.4g} scene units ({} x bounding radius {:.4g})",
-                                    setting.name, setting.get(in_use), setting.scene_fraction,
-                                    scene_radius));
+        std::string rule = fmt::format("{} x bounding radius {:.4g}", setting.scene_fraction,
+                                       scale.bounding_radius);
+        if (setting.extent_fraction > 0.0f)
+            rule = fmt::format("{}, at most {} x smallest extent {:.4g}", rule,
+                               setting.extent_fraction, scale.smallest_extent);
+        lines.push_back(fmt::format("{} auto = {:.4g} scene units ({})", setting.name,
+                                    setting.get(in_use), rule));
     }
     return lines;
 }

@@ -28,6 +28,10 @@ constexpr float unlimited = std::numeric_limits<float>::infinity();
 constexpr float kAoRadiusFraction = 0.1f;
 constexpr float kThicknessFraction = 0.04f;
 constexpr float kRadiosityRadiusFraction = 0.6f;
+// ...and at most this fraction of the box's smallest side (an interior's
+// height), so a long, low interior is not reached across (docs/radiosity.md,
+// "The auto radius of a low, wide interior").
+constexpr float kRadiosityExtentFraction = 0.75f;
 constexpr float kMinSeparationFraction = 0.1f;
 constexpr SettingEffect reallocate = SettingEffect::reallocate;
 constexpr SettingEffect drop_history = SettingEffect::drop_history;
@@ -257,7 +261,8 @@ const std::array<NumericSetting, 33> numeric_table = {{
      .label = "radius (m)",
      .group = "radiosity",
      .owner = "radiosity",
-     .help = "Deep radiosity: world-space gather radius",
+     .help = "Deep radiosity: world-space gather radius; auto: 0.6 x the scene's bounding "
+             "radius, at most 0.75 x its bounding box's smallest side",
      .unit = "metres",
      .minimum = 0.0f,
      .minimum_inclusive = false,
@@ -266,7 +271,8 @@ const std::array<NumericSetting, 33> numeric_table = {{
      .slider_max = 10.0f,
      .logarithmic = true,
      DEEPGI_FLOAT_FIELD(radiosity.radius),
-     .scene_fraction = kRadiosityRadiusFraction},
+     .scene_fraction = kRadiosityRadiusFraction,
+     .extent_fraction = kRadiosityExtentFraction},
     {.name = "radiosity-boost",
      .label = "boost",
      .group = "radiosity",

@@ -146,8 +146,7 @@ TEST_CASE("reference: --bounces 1 writes the old one-bounce output, bad values e
     const deepgi::Scene scene = deepgi::make_builtin_scene("cornell");
     settings.render.ao.radius = settings.render.min_separation = settings.render.radiosity.radius =
         deepgi::auto_length;
-    settings.render =
-        deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
+    settings.render = deepgi::resolve_auto_lengths(settings.render, deepgi::scene_scale(scene));
     settings.radiosity_radius = settings.render.radiosity.radius;
     const deepgi::RayScene rays(scene);
     const auto images = deepgi::render_reference(rays, scene.default_camera, settings);

@@ -304,8 +304,7 @@ TEST_CASE("reference: deepgi reference writes the images, and bad input writes n
     // The command leaves the AO radius and the separation at auto, which it
     // resolves against the scene as deepgi does.
     settings.render.ao.radius = settings.render.min_separation = deepgi::auto_length;
-    settings.render =
-        deepgi::resolve_auto_lengths(settings.render, deepgi::scene_bounding_radius(scene));
+    settings.render = deepgi::resolve_auto_lengths(settings.render, deepgi::scene_scale(scene));
     const deepgi::RayScene rays(scene);
     const auto images = deepgi::render_reference(rays, scene.default_camera, settings);
     REQUIRE(visibility.pixels == images.ambient_visibility.pixels);

@@ -149,12 +149,17 @@ TEST_CASE("scene scale: auto lengths are the rows' fractions of the bounding rad
     Scene scene = make_builtin_scene("cornell");
     const float radius = scene_bounding_radius(scene);
     CHECK(radius == Approx(0.5f * glm::length(scene.bounds.max - scene.bounds.min)));
+    const SceneScale scale = scene_scale(scene);
+    CHECK(scale.bounding_radius == radius);
+    CHECK(scale.smallest_extent == Approx(2.0f));  // the 2 m room
     RenderSettings settings = auto_settings();
     settings.ao.radius = 0.3f;  // explicit: kept
     Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
     const RenderSettings& in_use = renderer.settings_in_use();
     CHECK(renderer.settings().radiosity.radius == auto_length);
     CHECK(in_use.ao.radius == 0.3f);
+    // Cornell is as high as it is wide: the extent's cap leaves the radius
+    // at its fraction of the bounding radius.
     for (const char* name : {"radiosity-radius", "min-separation", "ao-thickness"}) {
         const NumericSetting& row = *find_numeric_setting(name);
         INFO(name);
@@ -166,8 +171,30 @@ TEST_CASE("scene scale: auto lengths are the rows' fractions of the bounding rad
     CHECK(parse_setting_value(*find_numeric_setting("exposure"), "auto") == auto_length);
     RenderSettings automatic;
     automatic.exposure = auto_length;
-    CHECK(resolve_auto_lengths(automatic, radius).exposure == auto_length);
+    CHECK(resolve_auto_lengths(automatic, scale).exposure == auto_length);
     CHECK_THROWS_AS(parse_setting_value(*find_numeric_setting("guard-band"), "auto"), InputError);
+}
+
+// Oracle: the warehouse's box, 30 x 8 x 40 m, from make_warehouse.
+TEST_CASE("scene scale: the radiosity radius stops at its fraction of a low interior's height",
+          "[runtime][scale]") {
+    const NumericSetting& row = *find_numeric_setting("radiosity-radius");
+    REQUIRE(row.extent_fraction > 0.0f);
+    const SceneScale warehouse = scene_scale(make_builtin_scene("warehouse"));
+    CHECK(warehouse.smallest_extent == Approx(8.0f));
+    CHECK(warehouse.bounding_radius ==
+          Approx(0.5f * std::sqrt(30.0f * 30.0f + 8.0f * 8.0f + 40.0f * 40.0f)));
+    CHECK(auto_length_value(row, warehouse) == Approx(row.extent_fraction * 8.0f));
+    CHECK(auto_length_value(row, warehouse) < row.scene_fraction * warehouse.bounding_radius);
+    // A flat scene (one quad) still gets a radius > 0: its extent counts as
+    // 0.2 bounding radii.
+    const SceneScale flat{.bounding_radius = 10.0f, .smallest_extent = 0.0f};
+    CHECK(auto_length_value(row, flat) ==
+          Approx(std::min(row.scene_fraction, 0.2f * row.extent_fraction) * 10.0f));
+    // Rows without a cap are their fraction of the bounding radius alone.
+    const NumericSetting& ao = *find_numeric_setting("ao-radius");
+    CHECK(auto_length_value(ao, warehouse) ==
+          Approx(ao.scene_fraction * warehouse.bounding_radius));
 }
 
 }  // namespace

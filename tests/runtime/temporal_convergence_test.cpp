@@ -41,11 +41,14 @@ spiral::test::TargetTable& targets() {
             {"cornell/E relative RMS/16 frames", KnownMiss{0.084, at + ": 0.0759"}},
             {"cornell/E relative RMS/64 frames", KnownMiss{0.036, at + ": 0.0330"}},
             {"cornell/AO RMS / mean occlusion/16 frames", KnownMiss{0.074, at + ": 0.0673"}},
-            {"atrium/E relative RMS/16 frames", KnownMiss{0.059, at + ": 0.0534"}},
-            {"warehouse/E relative RMS/16 frames", KnownMiss{0.52, at + ": 0.4742"}},
-            {"warehouse/E relative RMS/64 frames", KnownMiss{0.20, at + ": 0.1844"}},
-            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{4.6, at + ": 4.17"}},
-            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{2.15, at + ": 1.96"}},
+            // Warehouse at its 6 m auto radius (0.75 x its 8 m height);
+            // its fine grain, on 113 flat pixels, moves with the
+            // realisation (docs/radiosity.md, "The auto radius of a low,
+            // wide interior").
+            {"warehouse/E relative RMS/16 frames", KnownMiss{0.35, at + ": 0.3195"}},
+            {"warehouse/E relative RMS/64 frames", KnownMiss{0.078, at + ": 0.0711"}},
+            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{7.0, at + ": 6.33"}},
+            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{2.6, at + ": 2.37"}},
         });
     return table;
 }
@@ -54,7 +57,7 @@ spiral::test::TargetTable& targets() {
 // on them. At 160x90 the 9x9 window is twice as wide in the scene as at
 // 320x180: atrium keeps 187 flat pixels, warehouse 113. At the library's 1 m
 // radiosity radius warehouse's were all unlit (the converged E exactly 0);
-// at its auto radius (15 m) they are lit, so every scene has an E grain.
+// at its auto radius (6 m) they are lit, so every scene has an E grain.
 constexpr std::size_t min_flat_pixels = 100;
 
 TEST_CASE(

@@ -293,8 +293,8 @@ void capture_window(int width, int height, const fs::path& png) {
 void install_scene(WindowState& state, Scene scene, const std::string& camera) {
     const Camera home = select_camera(scene, camera);
     auto renderer = std::make_unique<Renderer>(scene, state.settings, state.loader);
-    for (const std::string& line : describe_auto_lengths(
-             state.settings, renderer->settings_in_use(), scene_bounding_radius(scene)))
+    for (const std::string& line :
+         describe_auto_lengths(state.settings, renderer->settings_in_use(), scene_scale(scene)))
         fmt::print("scene scale: {}\n", line);
     state.renderer = std::move(renderer);
     state.scene = std::move(scene);

@@ -60,7 +60,11 @@ void numeric_sliders(std::string_view group, RenderSettings& settings,
             if (ImGui::Checkbox("auto", &follows_scene))
                 setting.set(settings, follows_scene ? auto_length : setting.get(in_use));
             if (ImGui::IsItemHovered()) {
-                if (is_scene_length(setting))
+                if (is_scene_length(setting) && setting.extent_fraction > 0.0f)
+                    ImGui::SetTooltip(
+                        "%g x the scene's bounding radius, at most %g x its smallest extent",
+                        setting.scene_fraction, setting.extent_fraction);
+                else if (is_scene_length(setting))
                     ImGui::SetTooltip("%g x the scene's bounding radius", setting.scene_fraction);
                 else
                     ImGui::SetTooltip("measured each frame (docs/deepgi.md, \"Exposure\")");

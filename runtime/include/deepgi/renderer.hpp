@@ -66,6 +66,9 @@ Camera extrapolate_camera(const Camera& previous, const Camera& current);
 // Half the diagonal of the scene's bounding box (scene units), what `auto`
 // lengths are fractions of; 1 for an empty scene.
 float scene_bounding_radius(const Scene& scene);
+// The bounding radius and the bounding box's shortest side (at least 0), what
+// resolve_auto_lengths takes.
+SceneScale scene_scale(const Scene& scene);
 
 class Renderer {
 public:
@@ -97,7 +100,7 @@ public:
     // As given (lengths may be auto_length)...
     const RenderSettings& settings() const;
     // ...and as the passes read them: every `auto` length resolved against
-    // this renderer's scene (resolve_auto_lengths, scene_bounding_radius).
+    // this renderer's scene (resolve_auto_lengths, scene_scale).
     const RenderSettings& settings_in_use() const;
     // Edits the key light in place (the frame constants and the shadow
     // projection follow; nothing is reallocated or rebuilt). History is kept:

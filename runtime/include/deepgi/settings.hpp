@@ -379,6 +379,9 @@ struct NumericSetting {
     // settings), meaning this fraction of the scene's bounding radius; the
     // renderer resolves it for the scene it draws (resolve_auto_lengths).
     float scene_fraction = 0.0f;
+    // > 0: `auto` is also at most this fraction of the scene's smallest
+    // extent (SceneScale), so a long, low interior is not reached across.
+    float extent_fraction = 0.0f;
     // The row accepts `auto` (auto_length in the settings), which the
     // renderer measures each frame instead of resolving it from the scene
     // (exposure: Renderer::exposure_in_use()).
@@ -410,13 +413,27 @@ inline bool accepts_auto(const NumericSetting& setting) {
 // "auto" where accepts_auto() (returns auto_length), or a number within the
 // row's limits (check_setting). Throws InputError naming --NAME otherwise.
 float parse_setting_value(const NumericSetting& setting, std::string_view text);
-// Every `auto` length replaced by its row's fraction of `scene_radius` (the
-// scene's bounding radius, scene units); explicit numbers are kept.
-RenderSettings resolve_auto_lengths(RenderSettings settings, float scene_radius);
+// The sizes of a scene that `auto` lengths follow, in scene units
+// (scene_scale in renderer.hpp measures them).
+struct SceneScale {
+    // Half the diagonal of the bounding box.
+    float bounding_radius = 1.0f;
+    // The bounding box's shortest side (an interior's height, say).
+    float smallest_extent = 2.0f;
+};
+// What a scene-length row's `auto` is for a scene of this scale: the row's
+// fraction of the bounding radius, and, for a row with an extent_fraction,
+// at most that fraction of the smallest extent (a flat scene's extent counts
+// as at least 0.2 bounding radii, so the length stays > 0).
+float auto_length_value(const NumericSetting& setting, const SceneScale& scale);
+// Every `auto` length replaced by auto_length_value; explicit numbers are
+// kept.
+RenderSettings resolve_auto_lengths(RenderSettings settings, const SceneScale& scale);
 // One line per `auto` row of `given`, with the value `in_use` holds:
-// "ao-radius auto = 0.412 (0.24 x bounding radius 1.72)". Empty when no row
-// of `given` is auto.
+// "ao-radius auto = 0.412 scene units (0.24 x bounding radius 1.72)". Empty
+// when no row of `given` is auto.
 std::vector<std::string> describe_auto_lengths(const RenderSettings& given,
-                                               const RenderSettings& in_use, float scene_radius);
+                                               const RenderSettings& in_use,
+                                               const SceneScale& scale);
 
 }  // namespace deepgi

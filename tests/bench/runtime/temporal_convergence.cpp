@@ -212,9 +212,9 @@ int main(int argc, char** argv) {
                     100.0 * run.converged_ao_grain);
             }
             fmt::print("<!-- {}: {} flat pixels of {} -->\n", name, run.flat_pixels, run.pixels);
-            const float radius = deepgi::scene_bounding_radius(scene);
+            const deepgi::SceneScale scale = deepgi::scene_scale(scene);
             for (const std::string& line : deepgi::describe_auto_lengths(
-                     settings, deepgi::resolve_auto_lengths(settings, radius), radius))
+                     settings, deepgi::resolve_auto_lengths(settings, scale), scale))
                 fmt::print("<!-- {}: {} -->\n", name, line);
         }
         fmt::print(
