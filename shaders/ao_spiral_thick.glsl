@@ -118,6 +118,45 @@ struct ThickState {
   float occlusion;
 };
 
+// Whether the tap's surface reaches over X, so that its band runs up to the
+// zenith (docs/deep-sao.md, "Where its bias sits"). An overhang seen from X
+// covers every azimuth up to the zenith, but the taps that land on it lie in
+// a few screen directions, and their bands stop at the elevations of the
+// points they store: the floor under a slab or a shelf stays too bright.
+// Two conditions:
+// - the tap's plane crosses X's normal at a height t above X between r / 8
+//   (the march's two steps) and r, and above the threshold. Lower, it is a
+//   step at X's own surface: a face 2 cm proud of X's beside it (atrium's
+//   haunches under the beam) crosses there, and its band to the zenith
+//   darkened the line of pixels along the step past the truth;
+// - the surface is really there: the pixel the crossing projects to holds,
+//   in either layer, a point within the threshold of the tap's plane. The
+//   plane also crosses above X where its surface stops short of X (a board
+//   beside X, seen past its edge), and without this check those pixels
+//   darken (ref-board).
+// The fetch is taken only for the few taps whose plane crosses in range.
+bool reaches_over(ThickPixel px, vec3 tap_normal, float plane_offset, float toward_x) {
+  float facing = dot(px.normal, tap_normal);
+  if (abs(facing) < 1.0e-4) return false;  // a plane along X's normal crosses it nowhere
+  float t = (plane_offset - toward_x) / facing;
+  if (t <= px.threshold || 64.0 * t * t < px.radius_squared || t * t >= px.radius_squared) return false;
+  vec3 crossing = px.position + t * px.normal;
+  float z = -crossing.z;
+  if (z <= frame.camera_ray_scale.z) return false;  // in front of the near plane: nothing stored there
+  vec2 at = (crossing.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
+  if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return false;
+  ivec2 p = ivec2(at);
+  vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
+  // The stored points at p's centre, against the tap's plane: depth * along
+  // is dot(point, tap normal).
+  float along = dot(camera_position_at(vec2(p) + 0.5, 1.0, frame.internal_size, frame.camera_ray_scale), tap_normal);
+  bool held = depths.r > 0.0 && abs(depths.r * along - plane_offset) <= px.threshold;
+#if AO_LAYERS > 1
+  held = held || (depths.g > 0.0 && abs(depths.g * along - plane_offset) <= px.threshold);
+#endif
+  return held;
+}
+
 // One layer's solid of one tap, from its front depth to its back face
 // (linear, 0 = none: sao.thickness deep), with its surface's encoded normal,
 // into the hemisphere. A function called once per layer, not a loop over
@@ -165,7 +204,9 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float 
   float toward_x = dot(px.position, tap_normal);
   bool crease = toward_x > 0.0 ? plane_offset >= toward_x : toward_x < 0.0 && plane_offset <= toward_x;
   int first = crease ? 0 : min(int(min(min(u_f, u_b), min(u_near, u_far)) * 32.0), 31);
-  int last = min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
+  int last = reaches_over(px, tap_normal, plane_offset, toward_x)
+                 ? 31
+                 : min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
   uint bits = bit_range(first, last);
 #if AO_THICK_SECTORS == 2
   uint fresh = bits & ~(upper ? state.mask_upper : state.mask_lower);

@@ -157,6 +157,36 @@ TapLookup look_up_tap(const spiral::codegen::Tap& tap, int x, int y, float c, fl
 constexpr int thick_bins = 32;
 constexpr int thick_max_sectors = 8;
 
+// The tap's surface reaches over X (ao_spiral_thick.glsl, reaches_over): its
+// plane crosses X's normal at a height t above X in [r / 8, r) and above the
+// threshold, and the pixel that crossing projects to stores, in one of the
+// layers, a point within the threshold of that plane (the surface is really
+// there, not stopped short of X). Its band then runs up to the zenith.
+bool reaches_over(glm::vec3 position, glm::vec3 normal, glm::vec3 tap_normal, glm::vec3 front_point,
+                  float threshold, float radius_squared, int layers, const SaoInputs& inputs) {
+    const float facing = glm::dot(normal, tap_normal);
+    if (std::abs(facing) < 1.0e-4f) return false;
+    const float plane_offset = glm::dot(front_point, tap_normal);
+    const float t = (plane_offset - glm::dot(position, tap_normal)) / facing;
+    if (t <= threshold || 64.0f * t * t < radius_squared || t * t >= radius_squared) return false;
+    const glm::vec3 crossing = position + t * normal;
+    const float z = -crossing.z;
+    if (z <= inputs.near_plane) return false;
+    const FloatImage& base = inputs.pyramid.at(0);
+    const float at_x = (crossing.x / (z * inputs.ray_scale.x) * 0.5f + 0.5f) * float(base.width);
+    const float at_y = (crossing.y / (z * inputs.ray_scale.y) * 0.5f + 0.5f) * float(base.height);
+    if (at_x < 0.0f || at_y < 0.0f || at_x >= float(base.width) || at_y >= float(base.height))
+        return false;
+    const int px = int(at_x), py = int(at_y);
+    const float along =
+        glm::dot(camera_position(float(px) + 0.5f, float(py) + 0.5f, 1.0f, inputs), tap_normal);
+    for (int layer = 0; layer < layers; ++layer) {
+        const float depth = base.at(px, py, layer);
+        if (depth > 0.0f && std::abs(depth * along - plane_offset) <= threshold) return true;
+    }
+    return false;
+}
+
 float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float depth,
                               const SaoInputs& inputs,
                               const std::vector<spiral::codegen::Tap>& taps,
@@ -248,7 +278,10 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
                 toward_x != 0.0f && glm::dot(front_point, tap_normal) / toward_x >= 1.0f;
             const int first =
                 crease ? 0 : std::min(int(lowest * float(thick_bins)), thick_bins - 1);
-            const int last = std::min(int(highest * float(thick_bins)), thick_bins - 1);
+            const int last = reaches_over(position, normal, tap_normal, front_point, threshold,
+                                          radius_squared, settings.layers, inputs)
+                                 ? thick_bins - 1
+                                 : std::min(int(highest * float(thick_bins)), thick_bins - 1);
             int fresh = 0;
             for (int j = first; j <= last; ++j) {
                 fresh += !covered[sector][j];
