@@ -103,16 +103,6 @@ struct ThickTap {
   float nearest_depth;   // depth along ray of its point nearest X
 };
 
-// A sector's candidate overhang (overhang_occlusion): the first tap, in order
-// of growing radius, whose plane crosses X's normal in range above X.
-struct Overhang {
-  vec3 normal;    // the tap's plane: dot(p, normal) = offset
-  float offset;
-  float height;   // where the plane crosses X's normal above X; 0: no candidate
-  float weight;   // the tap's falloff
-  int first_bit;  // the bits above the tap's own band
-};
-
 // The hemisphere so far: the bitmasks, the sectors seen, the occlusion.
 struct ThickState {
 #if AO_THICK_SECTORS == 2
@@ -126,75 +116,15 @@ struct ThickState {
   // not open, and leave the estimate to the sectors that were seen.
   uint informed;
   float occlusion;
-#if AO_THICK_SECTORS == 2
-  Overhang overhang_lower;
-  Overhang overhang_upper;
-#else
-  Overhang overhang[AO_THICK_SECTORS];
-#endif
 };
-
-// Where a tap's surface reaches over X, its band runs up to the zenith
-// (docs/deep-sao.md, "Where its bias sits"). An overhang seen from X covers
-// every azimuth up to the zenith, but the taps that land on it lie in a few
-// screen directions, and their bands stop at the elevations of the points
-// they store: the floor under a slab or a shelf stayed too bright. Two
-// conditions:
-// - the tap's plane crosses X's normal at a height t above X between r / 8
-//   (the march's two steps) and r, and above the threshold (overhang_height).
-//   Lower, it is a step at X's own surface: a face 2 cm proud of X's beside
-//   it (atrium's haunches under the beam) crosses there, and its band to the
-//   zenith darkened the line of pixels along the step past the truth;
-// - the surface is really there: the pixel the crossing projects to holds,
-//   in either layer, a point within the threshold of the tap's plane
-//   (overhang_occlusion). The plane also crosses above X where its surface
-//   stops short of X (a board beside X, seen past its edge), and without
-//   this check those pixels darken (ref-board).
-// Cost: the candidates are layer 0's taps only (an overhang's top face is
-// what layer 0 stores), each sector keeps its first (the nearest), and the
-// check's fetch is taken once per sector after the taps. Taken in the tap
-// loop for every solid that crossed, or with a candidate per sector and
-// layer, the pass was 1.2x to 1.3x slower on llvmpipe; so it is about 1.1x
-// (docs/deep-sao.md, "Where its bias sits").
-
-// t where the tap's plane crosses X's normal, if in range; 0 otherwise.
-float overhang_height(ThickPixel px, vec3 tap_normal, float plane_offset, float toward_x) {
-  float facing = dot(px.normal, tap_normal);
-  if (abs(facing) < 1.0e-4) return 0.0;  // a plane along X's normal crosses it nowhere
-  float t = (plane_offset - toward_x) / facing;
-  bool in_range = t > px.threshold && 64.0 * t * t >= px.radius_squared && t * t < px.radius_squared;
-  return in_range ? t : 0.0;
-}
-
-// The occlusion a sector's candidate adds: its falloff on the bits above its
-// band that no tap took, where the buffer holds its surface at the crossing.
-float overhang_occlusion(ThickPixel px, Overhang o, uint mask) {
-  if (o.height == 0.0) return 0.0;
-  vec3 crossing = px.position + o.height * px.normal;
-  float z = -crossing.z;
-  if (z <= frame.camera_ray_scale.z) return 0.0;  // in front of the near plane: nothing stored there
-  vec2 at = (crossing.xy / (z * frame.camera_ray_scale.xy) * 0.5 + 0.5) * frame.internal_size.xy;
-  if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return 0.0;
-  ivec2 p = ivec2(at);
-  vec2 depths = texelFetch(depth_pyramid, p, 0).rg;
-  // The stored points at p's centre against the tap's plane: depth * along
-  // is dot(point, the plane's normal).
-  float along = dot(camera_position_at(vec2(p) + 0.5, 1.0, frame.internal_size, frame.camera_ray_scale), o.normal);
-  bool held = depths.r > 0.0 && abs(depths.r * along - o.offset) <= px.threshold;
-#if AO_LAYERS > 1
-  held = held || (depths.g > 0.0 && abs(depths.g * along - o.offset) <= px.threshold);
-#endif
-  return held ? o.weight * float(bitCount(bit_range(o.first_bit, 31) & ~mask)) : 0.0;
-}
 
 // One layer's solid of one tap, from its front depth to its back face
 // (linear, 0 = none: sao.thickness deep), with its surface's encoded normal,
-// into the hemisphere; overhangs: whether it may be its sector's candidate
-// overhang (layer 0). A function called once per layer, not a loop over
+// into the hemisphere. A function called once per layer, not a loop over
 // the layers: llvmpipe runs a loop over the layers as a loop, each select on
 // the layer at run time.
 void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float front, float back_face,
-                     vec2 encoded_normal, bool overhangs) {
+                     vec2 encoded_normal) {
   if (front <= 0.0) return;
   float back = back_face > 0.0 ? max(back_face, front) : front + sao.thickness;
   vec3 front_point = tap.ray * front;
@@ -236,23 +166,16 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float 
   bool crease = toward_x > 0.0 ? plane_offset >= toward_x : toward_x < 0.0 && plane_offset <= toward_x;
   int first = crease ? 0 : min(int(min(min(u_f, u_b), min(u_near, u_far)) * 32.0), 31);
   int last = min(int(max(max(u_f, u_b), max(u_near, u_far)) * 32.0), 31);
-  float weight = 1.0 - dd * px.inverse_radius_squared;
-  // The sector's first candidate overhang (overhang_occlusion).
-  float height = overhangs && last < 31 ? overhang_height(px, tap_normal, plane_offset, toward_x) : 0.0;
-  Overhang candidate = Overhang(tap_normal, plane_offset, height, weight, last + 1);
   uint bits = bit_range(first, last);
 #if AO_THICK_SECTORS == 2
   uint fresh = bits & ~(upper ? state.mask_upper : state.mask_lower);
   state.mask_upper |= upper ? bits : 0u;
   state.mask_lower |= upper ? 0u : bits;
-  if (height > 0.0 && upper && state.overhang_upper.height == 0.0) state.overhang_upper = candidate;
-  if (height > 0.0 && !upper && state.overhang_lower.height == 0.0) state.overhang_lower = candidate;
 #else
   uint fresh = bits & ~state.masks[sector];
   state.masks[sector] |= bits;
-  if (height > 0.0 && state.overhang[sector].height == 0.0) state.overhang[sector] = candidate;
 #endif
-  state.occlusion += weight * float(bitCount(fresh));
+  state.occlusion += (1.0 - dd * px.inverse_radius_squared) * float(bitCount(fresh));
 }
 
 // The cost is add_thick_solid's, per tap and layer (docs/ao-accuracy.md, the
@@ -287,17 +210,11 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
   px.cell_frame.x_normal = dot(px.x_ray, normal);
   px.cell_frame.x_x = dot(px.x_ray, px.x_ray);
   ThickState state;
-  Overhang none = Overhang(vec3(0.0), 0.0, 0.0, 0.0, 0);
 #if AO_THICK_SECTORS == 2
   state.mask_lower = 0u;
   state.mask_upper = 0u;
-  state.overhang_lower = none;
-  state.overhang_upper = none;
 #else
-  for (int k = 0; k < AO_THICK_SECTORS; ++k) {
-    state.masks[k] = 0u;
-    state.overhang[k] = none;
-  }
+  for (int k = 0; k < AO_THICK_SECTORS; ++k) state.masks[k] = 0u;
 #endif
   state.informed = 0u;
   state.occlusion = 0.0;
@@ -330,17 +247,11 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     // Both layers' encoded normals at the tap's source pixel in one fetch
     // (normal_pair.frag copies them from the G-buffer's two layers).
     vec4 tap_normals = texelFetch(normal_pair, tap.source, 0);
-    add_thick_solid(state, px, tap, tap_depths.r, tap_depths.b, tap_normals.xy, true);
+    add_thick_solid(state, px, tap, tap_depths.r, tap_depths.b, tap_normals.xy);
 #if AO_LAYERS > 1
-    add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw, false);
+    add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw);
 #endif
   }
-#if AO_THICK_SECTORS == 2
-  state.occlusion += overhang_occlusion(px, state.overhang_lower, state.mask_lower);
-  state.occlusion += overhang_occlusion(px, state.overhang_upper, state.mask_upper);
-#else
-  for (int k = 0; k < AO_THICK_SECTORS; ++k) state.occlusion += overhang_occlusion(px, state.overhang[k], state.masks[k]);
-#endif
   int seen = bitCount(state.informed);
   return seen == 0 ? 1.0 : 1.0 - state.occlusion / float(32 * seen);
 }

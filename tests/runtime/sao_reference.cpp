@@ -157,48 +157,6 @@ TapLookup look_up_tap(const spiral::codegen::Tap& tap, int x, int y, float c, fl
 constexpr int thick_bins = 32;
 constexpr int thick_max_sectors = 8;
 
-// A sector's candidate overhang (ao_spiral_thick.glsl, overhang_occlusion):
-// the first layer-0 tap (in order of growing radius) whose plane crosses X's
-// normal at a height t above X in [r / 8, r) and above the threshold.
-struct Overhang {
-    glm::vec3 normal{0.0f};  // the tap's plane: dot(p, normal) = offset
-    float offset = 0.0f;
-    float height = 0.0f;  // t; 0: no candidate
-    float weight = 0.0f;  // the tap's falloff
-    int first_bin = 0;    // the bins above the tap's own band
-};
-
-float overhang_height(glm::vec3 position, glm::vec3 normal, glm::vec3 tap_normal,
-                      float plane_offset, float threshold, float radius_squared) {
-    const float facing = glm::dot(normal, tap_normal);
-    if (std::abs(facing) < 1.0e-4f) return 0.0f;
-    const float t = (plane_offset - glm::dot(position, tap_normal)) / facing;
-    return t > threshold && 64.0f * t * t >= radius_squared && t * t < radius_squared ? t : 0.0f;
-}
-
-// Whether the candidate's surface is really there: the pixel its crossing of
-// X's normal projects to stores, in one of the layers, a point within the
-// threshold of its plane. Its band then runs up to the zenith.
-bool overhang_held(const Overhang& o, glm::vec3 position, glm::vec3 normal, float threshold,
-                   int layers, const SaoInputs& inputs) {
-    const glm::vec3 crossing = position + o.height * normal;
-    const float z = -crossing.z;
-    if (z <= inputs.near_plane) return false;
-    const FloatImage& base = inputs.pyramid.at(0);
-    const float at_x = (crossing.x / (z * inputs.ray_scale.x) * 0.5f + 0.5f) * float(base.width);
-    const float at_y = (crossing.y / (z * inputs.ray_scale.y) * 0.5f + 0.5f) * float(base.height);
-    if (at_x < 0.0f || at_y < 0.0f || at_x >= float(base.width) || at_y >= float(base.height))
-        return false;
-    const int px = int(at_x), py = int(at_y);
-    const float along =
-        glm::dot(camera_position(float(px) + 0.5f, float(py) + 0.5f, 1.0f, inputs), o.normal);
-    for (int layer = 0; layer < layers; ++layer) {
-        const float depth = base.at(px, py, layer);
-        if (depth > 0.0f && std::abs(depth * along - o.offset) <= threshold) return true;
-    }
-    return false;
-}
-
 float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float depth,
                               const SaoInputs& inputs,
                               const std::vector<spiral::codegen::Tap>& taps,
@@ -219,7 +177,6 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
     // seen[k]: some tap on the buffer fell into sector k.
     bool covered[thick_max_sectors][thick_bins] = {};
     bool seen[thick_max_sectors] = {};
-    Overhang overhangs[thick_max_sectors];
     double occlusion = 0.0;
     // Each tap stands for half the radial spacing of the taps of its sector
     // on either side of it (alpha units).
@@ -292,30 +249,13 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             const int first =
                 crease ? 0 : std::min(int(lowest * float(thick_bins)), thick_bins - 1);
             const int last = std::min(int(highest * float(thick_bins)), thick_bins - 1);
-            const float weight = 1.0f - dd / radius_squared;
-            if (layer == 0 && last < thick_bins - 1 && overhangs[sector].height == 0.0f) {
-                const float plane_offset = glm::dot(front_point, tap_normal);
-                const float t = overhang_height(position, normal, tap_normal, plane_offset,
-                                                threshold, radius_squared);
-                if (t > 0.0f) overhangs[sector] = {tap_normal, plane_offset, t, weight, last + 1};
-            }
             int fresh = 0;
             for (int j = first; j <= last; ++j) {
                 fresh += !covered[sector][j];
                 covered[sector][j] = true;
             }
-            occlusion += double(weight) * fresh;
+            occlusion += double(1.0f - dd / radius_squared) * fresh;
         }
-    }
-    // The overhangs, after the taps: the bins above each candidate's band
-    // that no tap covered.
-    for (int k = 0; k < thick_sectors; ++k) {
-        const Overhang& o = overhangs[k];
-        if (o.height == 0.0f ||
-            !overhang_held(o, position, normal, threshold, settings.layers, inputs))
-            continue;
-        const int fresh = int(std::count(covered[k] + o.first_bin, covered[k] + thick_bins, false));
-        occlusion += double(o.weight) * fresh;
     }
     const int sectors_seen = int(std::count(seen, seen + thick_sectors, true));
     return sectors_seen == 0 ? 1.0f : float(1.0 - occlusion / double(sectors_seen * thick_bins));

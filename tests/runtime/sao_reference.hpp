@@ -10,10 +10,8 @@
 // - the march repeats sao.frag's choices that no formula fixes: the seed of
 //   its per-pixel step offset (0x68e31da4), its golden-angle ray disk, the
 //   solid's minimum of two steps, and the 1e-3 z tolerance behind a stored
-//   plane; the obscurance's epsilon 1e-4 likewise; and the thick spiral's
-//   overhang test (its r / 8 floor, its candidates from layer 0, the first
-//   per sector). A change to any of them in the shader must be made here
-//   too; it is not checked independently;
+//   plane; the obscurance's epsilon 1e-4 likewise. A change to any of them
+//   in the shader must be made here too; it is not checked independently;
 // - the SAO comparison takes the camera ray scale as the renderer computes it
 //   (renderer_ray_scale), checked to 1e-6 against the textbook camera's.
 #include "deepgi/image_io.hpp"
