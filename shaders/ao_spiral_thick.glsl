@@ -197,10 +197,10 @@ bool overhang_layer(ThickPixel px, float front, float z, vec3 ray, float floor_h
 // sector's bits from that point's elevation to the zenith count, with its
 // falloff, where no tap took them. Hanging over X: the point's elevation is
 // at least 45 degrees (u >= 1/2); lower points hid the probe beside small
-// occluders (a block's edge on cornell's floor) and closed half a hemisphere
-// that the truth sees open. One fetch and no loop, as the sectors' probes
-// and the per-tap candidates before cost more (docs/deep-sao.md, "The
-// overhang probe").
+// occluders (a block's edge on cornell's floor) and closed the hemisphere
+// above them where the truth sees it open. One fetch and no loop: a probe
+// per sector, and per-tap candidates before it, cost more (docs/deep-sao.md,
+// "Where its bias sits", the overhang probe).
 void add_overhang(inout ThickState state, ThickPixel px, float radius) {
   vec3 q = px.position + 0.5 * radius * px.normal;
   float z = -q.z;
