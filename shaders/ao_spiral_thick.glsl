@@ -178,6 +178,55 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float 
   state.occlusion += (1.0 - dd * px.inverse_radius_squared) * float(bitCount(fresh));
 }
 
+// One layer's stored point on the camera ray through the overhang probe q (at
+// linear depth z, the ray at unit depth q / z): a candidate when it hides q
+// from the camera, lies at least r / 8 above X's plane and within r of X.
+bool overhang_layer(ThickPixel px, float front, float z, vec3 ray, float floor_height, out float dd,
+                    out float height) {
+  vec3 s = ray * front - px.position;
+  height = dot(s, px.normal);
+  dd = dot(s, s);
+  return front > 0.0 && front < z && height >= floor_height && dd < px.radius_squared;
+}
+
+// The overhang test, after the taps and with no work per tap: the taps that
+// land on a surface over X (a slab, a shelf board) lie in a few screen
+// directions and their bands need not reach the zenith (docs/deep-sao.md,
+// "Where its bias sits"). One probe r / 2 above X along its normal; where a
+// stored surface of either layer hides it and hangs over X, every seen
+// sector's bits from that point's elevation to the zenith count, with its
+// falloff, where no tap took them. Hanging over X: the point's elevation is
+// at least 45 degrees (u >= 1/2); lower points hid the probe beside small
+// occluders (a block's edge on cornell's floor) and closed the hemisphere
+// above them where the truth sees it open. One fetch and no loop: a probe
+// per sector, and per-tap candidates before it, cost more (docs/deep-sao.md,
+// "Where its bias sits", the overhang probe).
+void add_overhang(inout ThickState state, ThickPixel px, float radius) {
+  vec3 q = px.position + 0.5 * radius * px.normal;
+  float z = -q.z;
+  vec2 at = (q.xy / (z * frame.camera_ray_scale.xy) + 1.0) * 0.5 * frame.internal_size.xy;
+  if (z <= 0.0 || any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return;
+  vec2 fronts = texelFetch(depth_pyramid, ivec2(at), 0).rg;
+  float floor_height = 0.125 * radius, dd, height;
+  bool hit = overhang_layer(px, fronts.r, z, q / z, floor_height, dd, height);
+#if AO_LAYERS > 1
+  if (!hit) hit = overhang_layer(px, fronts.g, z, q / z, floor_height, dd, height);
+#endif
+  if (!hit) return;
+  float u = elevation_u(dd, height, px.threshold);
+  if (u < 0.5) return;
+  uint bits = bit_range(min(int(u * 32.0), 31), 31);
+#if AO_THICK_SECTORS == 2
+  int fresh = ((state.informed & 1u) != 0u ? bitCount(bits & ~state.mask_lower) : 0) +
+              ((state.informed & 2u) != 0u ? bitCount(bits & ~state.mask_upper) : 0);
+#else
+  int fresh = 0;
+  for (int k = 0; k < AO_THICK_SECTORS; ++k)
+    fresh += (state.informed & (1u << uint(k))) != 0u ? bitCount(bits & ~state.masks[k]) : 0;
+#endif
+  state.occlusion += (1.0 - dd * px.inverse_radius_squared) * float(fresh);
+}
+
 // The cost is add_thick_solid's, per tap and layer (docs/ao-accuracy.md, the
 // thick spiral's cost): the camera rays are affine in the pixel position and
 // are built once per tap, not per layer; the cell ends are scalar sums of
@@ -252,6 +301,7 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw);
 #endif
   }
+  add_overhang(state, px, radius);
   int seen = bitCount(state.informed);
   return seen == 0 ? 1.0 : 1.0 - state.occlusion / float(32 * seen);
 }

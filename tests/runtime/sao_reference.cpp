@@ -257,6 +257,37 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             occlusion += double(1.0f - dd / radius_squared) * fresh;
         }
     }
+    // The overhang test (ao_spiral_thick.glsl, add_overhang): a probe r / 2
+    // above X; the first layer whose stored point on the probe's camera ray
+    // hides it, lies at least r / 8 above X's plane and within r of X is over
+    // X if at least 45 degrees up (u >= 1/2), and then closes every seen
+    // sector from that point's elevation to the zenith.
+    const glm::vec3 probe = position + 0.5f * settings.radius * normal;
+    const float probe_depth = -probe.z;
+    const float width = float(inputs.pyramid.at(0).width);
+    const float probe_x = (probe.x / (probe_depth * inputs.ray_scale.x) + 1.0f) * 0.5f * width;
+    const float probe_y = (probe.y / (probe_depth * inputs.ray_scale.y) + 1.0f) * 0.5f * height;
+    if (probe_depth > 0.0f && probe_x >= 0.0f && probe_y >= 0.0f && probe_x < width &&
+        probe_y < height) {
+        for (int layer = 0; layer < settings.layers; ++layer) {
+            const float front = inputs.pyramid[0].at(int(probe_x), int(probe_y), layer);
+            const glm::vec3 v = probe * (front / probe_depth) - position;
+            const float h = glm::dot(v, normal), dd = glm::dot(v, v);
+            if (!(front > 0.0f && front < probe_depth && h >= 0.125f * settings.radius &&
+                  dd < radius_squared))
+                continue;
+            const float rise = h - threshold;
+            const float u = rise > 0.0f ? std::min(rise * rise / dd, 1.0f) : 0.0f;
+            if (u < 0.5f) break;  // not over X: within 45 degrees of its zenith only
+            int fresh = 0;
+            for (int k = 0; k < thick_sectors; ++k)
+                for (int j = std::min(int(u * float(thick_bins)), thick_bins - 1);
+                     seen[k] && j < thick_bins; ++j)
+                    fresh += !covered[k][j];
+            occlusion += double(1.0f - dd / radius_squared) * fresh;
+            break;
+        }
+    }
     const int sectors_seen = int(std::count(seen, seen + thick_sectors, true));
     return sectors_seen == 0 ? 1.0f : float(1.0 - occlusion / double(sectors_seen * thick_bins));
 }
