@@ -40,8 +40,7 @@ inline deepgi::RenderSettings dump_viewport(int width, int height, float guard_b
 inline deepgi::RenderSettings with_scene_lengths(deepgi::RenderSettings settings,
                                                  const deepgi::Scene& scene,
                                                  float radiosity_radius) {
-    for (const deepgi::NumericSetting& row : deepgi::numeric_settings())
-        if (deepgi::is_scene_length(row)) row.set(settings, deepgi::auto_length);
+    settings = deepgi::with_auto_lengths(settings);
     settings.radiosity.radius = radiosity_radius;
     return deepgi::resolve_auto_lengths(settings, deepgi::scene_scale(scene));
 }

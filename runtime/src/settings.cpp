@@ -231,6 +231,12 @@ float auto_length_value(const NumericSetting& setting, const SceneScale& scale) 
     return std::min(length, setting.extent_fraction * extent);
 }
 
+RenderSettings with_auto_lengths(RenderSettings settings) {
+    for (const NumericSetting& setting : numeric_settings())
+        if (is_scene_length(setting)) setting.set(settings, auto_length);
+    return settings;
+}
+
 RenderSettings resolve_auto_lengths(RenderSettings settings, const SceneScale& scale) {
     for (const NumericSetting& setting : numeric_settings()) {
         if (is_scene_length(setting) && setting.get(settings) == auto_length)

@@ -60,9 +60,7 @@ RenderSettings auto_settings() {
     settings.width = kWidth;
     settings.height = kHeight;
     settings.shadow_map_size = 1024;
-    for (const NumericSetting& row : numeric_settings())
-        if (is_scene_length(row)) row.set(settings, auto_length);
-    return settings;
+    return with_auto_lengths(settings);
 }
 
 std::vector<std::uint8_t> render_still(const Scene& scene, const RenderSettings& settings) {

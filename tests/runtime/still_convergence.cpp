@@ -27,12 +27,6 @@ FloatImage viewport_of(const FloatImage& image, int width, int height) {
     return out;
 }
 
-RenderSettings with_auto_lengths(RenderSettings settings) {
-    for (const NumericSetting& row : numeric_settings())
-        if (is_scene_length(row)) row.set(settings, auto_length);
-    return settings;
-}
-
 namespace {
 
 struct Guides {

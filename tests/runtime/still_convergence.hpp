@@ -65,13 +65,6 @@ struct StillObserver {
     std::function<void(const Renderer&, int frames, const FloatImage& ao)> count;
 };
 
-// `settings` with every length that follows the scene set to `auto`, as the
-// deepgi command line leaves them unless given (apps/deepgi/main.cpp): the
-// renderer then resolves them for each scene (resolve_auto_lengths), so the
-// figures are those a user sees. The library's own defaults (AO radius
-// 0.5 m, radiosity radius 1 m) are the same for every scene's size.
-RenderSettings with_auto_lengths(RenderSettings settings);
-
 // Needs a current GL context. `frame_counts` must be increasing and >= 1;
 // the renderers are the build's (plus the converged image's tap header).
 StillConvergence measure_still_convergence(const Scene& scene, const RenderSettings& settings,

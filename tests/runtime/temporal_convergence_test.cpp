@@ -67,7 +67,7 @@ TEST_CASE(
     HeadlessContext context;
     // The command line's defaults, as the benchmark uses: lengths follow the
     // scene.
-    RenderSettings settings = convergence::with_auto_lengths({});
+    RenderSettings settings = with_auto_lengths({});
     settings.width = test_width;
     settings.height = test_height;
     for (const std::string name : {"cornell", "atrium", "warehouse"}) {

@@ -426,6 +426,9 @@ struct SceneScale {
 // at most that fraction of the smallest extent (a flat scene's extent counts
 // as at least 0.2 bounding radii, so the length stays > 0).
 float auto_length_value(const NumericSetting& setting, const SceneScale& scale);
+// `settings` with every scene-length row set to `auto`, as the deepgi
+// command line leaves them unless given.
+RenderSettings with_auto_lengths(RenderSettings settings);
 // Every `auto` length replaced by auto_length_value; explicit numbers are
 // kept.
 RenderSettings resolve_auto_lengths(RenderSettings settings, const SceneScale& scale);

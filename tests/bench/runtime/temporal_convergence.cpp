@@ -136,8 +136,7 @@ int main(int argc, char** argv) {
         if (converged_taps < 1) throw deepgi::InputError("--converged-taps must be >= 1");
         // --set values go on top of the lengths, so an explicit length wins.
         deepgi::RenderSettings settings = deepgi::bench::settings_for(
-            options, library_lengths ? deepgi::RenderSettings{}
-                                     : deepgi::convergence::with_auto_lengths({}));
+            options, library_lengths ? deepgi::RenderSettings{} : deepgi::with_auto_lengths({}));
         settings.rotation_seed = rotation_seed;
         settings.temporal_offset = temporal_offset;
         deepgi::validate(settings);
