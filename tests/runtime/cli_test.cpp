@@ -3,6 +3,7 @@
 // writes every pass output finite and inside its documented range.
 #include "deepgi/image_io.hpp"
 #include "deepgi/shader_loader.hpp"
+#include "process.hpp"
 #include "ray_cast_oracle.hpp"
 
 #include <catch2/catch.hpp>
@@ -27,10 +28,9 @@ struct RunResult {
     std::string stderr_text;
 };
 
-fs::path scratch() {
-    const fs::path dir =
-        fs::temp_directory_path() / ("deepgi_cli_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+// One scratch folder for the whole program, removed when it exits.
+const fs::path& scratch() {
+    static const fs::path dir = spiral::test::make_scratch_dir("deepgi-cli-test");
     return dir;
 }
 

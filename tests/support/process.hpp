@@ -12,6 +12,8 @@
 #include <iterator>
 #include <random>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace spiral::test {
 
@@ -26,12 +28,36 @@ inline std::string read_file(const std::filesystem::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// A fresh, empty directory under the system's temporary directory.
+// Every scratch directory this test program made, removed when it exits, so a
+// test run leaves nothing under the temporary directory, whether a check
+// failed or not (a crash or kill still leaves its directories behind).
+class ScratchRegistry {
+public:
+    void add(const std::filesystem::path& dir) { dirs_.push_back(dir); }
+    ~ScratchRegistry() {
+        for (const auto& dir : dirs_) {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    }
+
+private:
+    std::vector<std::filesystem::path> dirs_;
+};
+
+inline ScratchRegistry& scratch_registry() {
+    static ScratchRegistry registry;
+    return registry;
+}
+
+// A fresh, empty directory under the system's temporary directory, removed
+// with everything in it when the test program exits.
 inline std::filesystem::path make_scratch_dir(const std::string& tag) {
     std::random_device seed;
     const auto dir = std::filesystem::temp_directory_path() /
                      (tag + "-" + std::to_string(seed()) + "-" + std::to_string(seed()));
     std::filesystem::create_directories(dir);
+    scratch_registry().add(dir);
     return dir;
 }
 
