@@ -189,32 +189,42 @@ bool overhang_layer(ThickPixel px, float front, float z, vec3 ray, float floor_h
   return front > 0.0 && front < z && height >= floor_height && dd < px.radius_squared;
 }
 
-// The overhang test, after the taps and with no work per tap: the taps that
-// land on a surface over X (a slab, a shelf board) lie in a few screen
-// directions and their bands need not reach the zenith (docs/deep-sao.md,
-// "Where its bias sits"). One probe r / 2 above X along its normal; where a
-// stored surface of either layer hides it and hangs over X, every seen
-// sector's bits from that point's elevation to the zenith count, with its
-// falloff, where no tap took them. Hanging over X: the point's elevation is
-// at least 45 degrees (u >= 1/2); lower points hid the probe beside small
+// One overhang probe `up` radii above X along its normal: true where a stored
+// surface of either layer hides it and hangs over X, with that point's
+// squared distance and height. Hanging over X: the point's elevation is at
+// least 45 degrees (u >= 1/2); lower points hid the probe beside small
 // occluders (a block's edge on cornell's floor) and closed the hemisphere
-// above them where the truth sees it open. One fetch and no loop: a probe
-// per sector, and per-tap candidates before it, cost more (docs/deep-sao.md,
-// "Where its bias sits", the overhang probe).
-void add_overhang(inout ThickState state, ThickPixel px, float radius) {
-  vec3 q = px.position + 0.5 * radius * px.normal;
+// above them where the truth sees it open.
+bool overhang_probe(ThickPixel px, float radius, float up, out float dd, out float height) {
+  vec3 q = px.position + up * radius * px.normal;
   float z = -q.z;
   vec2 at = (q.xy / (z * frame.camera_ray_scale.xy) + 1.0) * 0.5 * frame.internal_size.xy;
-  if (z <= 0.0 || any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return;
+  if (z <= 0.0 || any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, frame.internal_size.xy))) return false;
   vec2 fronts = texelFetch(depth_pyramid, ivec2(at), 0).rg;
-  float floor_height = 0.125 * radius, dd, height;
+  float floor_height = 0.125 * radius;
   bool hit = overhang_layer(px, fronts.r, z, q / z, floor_height, dd, height);
 #if AO_LAYERS > 1
   if (!hit) hit = overhang_layer(px, fronts.g, z, q / z, floor_height, dd, height);
 #endif
-  if (!hit) return;
+  return hit && elevation_u(dd, height, px.threshold) >= 0.5;
+}
+
+// The overhang test, after the taps and with no work per tap: the taps that
+// land on a surface over X (a slab, a shelf board) lie in a few screen
+// directions and their bands need not reach the zenith (docs/deep-sao.md,
+// "Where its bias sits"). A probe r / 4 above X, then (where nothing hangs
+// over that one) a probe r / 2 above X: the low probe finds boards close
+// over a floor, which the high one passes over; the high one finds slabs
+// whose edge the low probe's ray passes beneath. Where one finds a surface
+// over X, every seen sector's bits from that point's elevation to the
+// zenith count, with its falloff, where no tap took them. One or two
+// fetches and no loop: a probe per sector, and per-tap candidates before
+// it, cost more (docs/deep-sao.md, "Where its bias sits", the overhang
+// probe).
+void add_overhang(inout ThickState state, ThickPixel px, float radius) {
+  float dd, height;
+  if (!overhang_probe(px, radius, 0.25, dd, height) && !overhang_probe(px, radius, 0.5, dd, height)) return;
   float u = elevation_u(dd, height, px.threshold);
-  if (u < 0.5) return;
   uint bits = bit_range(min(int(u * 32.0), 31), 31);
 #if AO_THICK_SECTORS == 2
   int fresh = ((state.informed & 1u) != 0u ? bitCount(bits & ~state.mask_lower) : 0) +

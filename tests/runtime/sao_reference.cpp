@@ -257,18 +257,24 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             occlusion += double(1.0f - dd / radius_squared) * fresh;
         }
     }
-    // The overhang test (ao_spiral_thick.glsl, add_overhang): a probe r / 2
-    // above X; the first layer whose stored point on the probe's camera ray
-    // hides it, lies at least r / 8 above X's plane and within r of X is over
-    // X if at least 45 degrees up (u >= 1/2), and then closes every seen
-    // sector from that point's elevation to the zenith.
-    const glm::vec3 probe = position + 0.5f * settings.radius * normal;
-    const float probe_depth = -probe.z;
+    // The overhang test (ao_spiral_thick.glsl, add_overhang): a probe r / 4
+    // above X, then one r / 2 above X; the first layer whose stored point on
+    // a probe's camera ray hides it, lies at least r / 8 above X's plane and
+    // within r of X is over X if at least 45 degrees up (u >= 1/2), and then
+    // closes every seen sector from that point's elevation to the zenith.
+    // The first probe over X decides; a probe whose point is lower hands on
+    // to the next.
     const float width = float(inputs.pyramid.at(0).width);
-    const float probe_x = (probe.x / (probe_depth * inputs.ray_scale.x) + 1.0f) * 0.5f * width;
-    const float probe_y = (probe.y / (probe_depth * inputs.ray_scale.y) + 1.0f) * 0.5f * height;
-    if (probe_depth > 0.0f && probe_x >= 0.0f && probe_y >= 0.0f && probe_x < width &&
-        probe_y < height) {
+    for (const float up : {0.25f, 0.5f}) {
+        const glm::vec3 probe = position + up * settings.radius * normal;
+        const float probe_depth = -probe.z;
+        const float probe_x = (probe.x / (probe_depth * inputs.ray_scale.x) + 1.0f) * 0.5f * width;
+        const float probe_y =
+            (probe.y / (probe_depth * inputs.ray_scale.y) + 1.0f) * 0.5f * height;
+        if (!(probe_depth > 0.0f && probe_x >= 0.0f && probe_y >= 0.0f && probe_x < width &&
+              probe_y < height))
+            continue;
+        bool over = false;
         for (int layer = 0; layer < settings.layers; ++layer) {
             const float front = inputs.pyramid[0].at(int(probe_x), int(probe_y), layer);
             const glm::vec3 v = probe * (front / probe_depth) - position;
@@ -285,8 +291,10 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
                      seen[k] && j < thick_bins; ++j)
                     fresh += !covered[k][j];
             occlusion += double(1.0f - dd / radius_squared) * fresh;
+            over = true;
             break;
         }
+        if (over) break;
     }
     const int sectors_seen = int(std::count(seen, seen + thick_sectors, true));
     return sectors_seen == 0 ? 1.0f : float(1.0 - occlusion / double(sectors_seen * thick_bins));
