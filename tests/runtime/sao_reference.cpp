@@ -269,8 +269,7 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
         const glm::vec3 probe = position + up * settings.radius * normal;
         const float probe_depth = -probe.z;
         const float probe_x = (probe.x / (probe_depth * inputs.ray_scale.x) + 1.0f) * 0.5f * width;
-        const float probe_y =
-            (probe.y / (probe_depth * inputs.ray_scale.y) + 1.0f) * 0.5f * height;
+        const float probe_y = (probe.y / (probe_depth * inputs.ray_scale.y) + 1.0f) * 0.5f * height;
         if (!(probe_depth > 0.0f && probe_x >= 0.0f && probe_y >= 0.0f && probe_x < width &&
               probe_y < height))
             continue;
