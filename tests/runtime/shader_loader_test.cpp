@@ -50,6 +50,22 @@ TEST_CASE("shader loader: includes resolve from the shader and generated directo
     REQUIRE(source.files.size() == 3);
 }
 
+// deepgi --shaders puts a folder of edited copies first: a copy of an
+// include alone must replace the build's file, though the including shader
+// (not copied) has the build's beside it.
+TEST_CASE("shader loader: an include in the first directory wins over the one beside its includer",
+          "[runtime][shader_loader]") {
+    LoaderFolders dir;
+    fs::create_directories(dir.path / "copies");
+    dir.write("shaders/main.frag", "#version 450 core\n#include \"common.glsl\"\nvoid main() {}\n");
+    dir.write("shaders/common.glsl", "const float BUILD = 1.0;\n");
+    dir.write("copies/common.glsl", "const float COPY = 1.0;\n");
+    ShaderLoader loader({dir.path / "copies", dir.path / "shaders", dir.path / "generated"});
+    const auto source = loader.expand("main.frag");
+    REQUIRE(source.text.find("COPY") != std::string::npos);
+    REQUIRE(source.text.find("BUILD") == std::string::npos);
+}
+
 TEST_CASE("shader loader: a missing include names the including file and line",
           "[runtime][shader_loader]") {
     LoaderFolders dir;

@@ -24,7 +24,9 @@ struct ShaderStage {
 
 class ShaderLoader {
 public:
-    // Searched in order; the first is where top-level shader files live.
+    // Searched in order; the first is where top-level shader files live. An
+    // include is looked up in the first, then beside the file that includes
+    // it, then in the others.
     explicit ShaderLoader(std::vector<std::filesystem::path> include_dirs);
 
     // The directories the build configured: shaders/ and the generated headers.

@@ -84,6 +84,11 @@ ShaderLoader ShaderLoader::from_build_configuration(fs::path first) {
 }
 
 fs::path ShaderLoader::resolve(const std::string& name, const fs::path& including_dir) const {
+    // The first directory wins even over the including file's own: it may be
+    // a folder of edited copies (deepgi --shaders), and an edited include
+    // must replace the build's file beside the shader that includes it.
+    if (!include_dirs_.empty() && fs::is_regular_file(include_dirs_.front() / name))
+        return include_dirs_.front() / name;
     if (!including_dir.empty() && fs::is_regular_file(including_dir / name))
         return including_dir / name;
     for (const auto& dir : include_dirs_) {
