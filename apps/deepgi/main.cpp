@@ -326,7 +326,7 @@ int main(int argc, char** argv) {
                    fmt::format("Deep SAO estimator: {} (spiral-thick unions the "
                                "directions hidden by each spiral tap's solid, front to back "
                                "face; march casts the reference's rays through the same "
-                               "solids, about 5x the cost of the spiral gathers; solid-angle "
+                               "solids, about 4x the cost of the solid angle; solid-angle "
                                "is the reference's integral over the seen surface on the "
                                "spiral taps; published is 1 - sqrt(...); gtao and bitmask "
                                "march --ao-slices screen-space slices of --ao-steps samples: "
