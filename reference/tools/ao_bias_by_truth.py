@@ -18,25 +18,12 @@ the guard band in pixels (default: lround(0.1 * viewport height), as deepgi
 takes it).
 Standard library only, so that it runs wherever the renderer does.
 """
-import array
 import sys
+
+from pfm import read_pfm
 
 BUCKETS = [(0.9999, 2.0, "open"), (0.97, 0.9999, ".97-1"), (0.9, 0.97, ".9-.97"),
            (0.7, 0.9, ".7-.9"), (-1.0, 0.7, "<.7")]
-
-
-def read_pfm(path):
-    """First channel, rows bottom to top as stored (the pixel grid's order)."""
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = (int(v) for v in f.readline().split())
-        scale = float(f.readline())
-        data = array.array("f")
-        data.frombytes(f.read())
-    if (scale < 0) != (sys.byteorder == "little"):
-        data.byteswap()
-    channels = 3 if kind == b"PF" else 1
-    return width, height, [data[i * channels] for i in range(width * height)]
 
 
 def main():

@@ -34,9 +34,10 @@ camera); each DUMP_DIR's ao-blurred.pfm is measured, the first one's
 G-buffer gives the positions.
 Standard library only, so that it runs wherever the renderer does.
 """
-import array
 import math
 import sys
+
+from pfm import read_pfm
 
 RADIUS = 0.5
 FOV_DEGREES = 40.0
@@ -44,20 +45,6 @@ CAMERA_Z = 3.6
 CAMERA_Y = 1.0
 # Blocks: centre, half extents, turn about y (scene_builtin.cpp, make_cornell).
 BLOCKS = [((-0.33, 0.6, -0.35), (0.28, 0.6, 0.28), 17.0), ((0.35, 0.3, 0.3), (0.28, 0.3, 0.28), -17.0)]
-
-
-def read_pfm(path):
-    """First channel, rows bottom to top as stored (the pixel grid's order)."""
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = (int(v) for v in f.readline().split())
-        scale = float(f.readline())
-        data = array.array("f")
-        data.frombytes(f.read())
-    if (scale < 0) != (sys.byteorder == "little"):
-        data.byteswap()
-    channels = 3 if kind == b"PF" else 1
-    return width, height, [data[i * channels] for i in range(width * height)]
 
 
 def block_distance(p):
