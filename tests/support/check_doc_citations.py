@@ -33,7 +33,12 @@ BOLD_LEAD = re.compile(r'\*\*([^*]+?)\*\*')
 
 
 def tracked_files(root):
-    out = subprocess.check_output(['git', '-C', root, 'ls-files'], text=True)
+    try:
+        out = subprocess.check_output(['git', '-C', root, 'ls-files'],
+                                      text=True, stderr=subprocess.DEVNULL)
+    except (OSError, subprocess.CalledProcessError):
+        print('skipped: not a git checkout, so the tracked files are unknown')
+        sys.exit(77)
     return out.split()
 
 
