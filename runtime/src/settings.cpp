@@ -184,17 +184,36 @@ std::string describe_limits(const NumericSetting& setting) {
                        setting.minimum, setting.maximum, setting.maximum_inclusive ? "]" : ")");
 }
 
-void check_setting(const NumericSetting& setting, double value) {
+namespace {
+
+// Within the row's limits, and a float: settings hold floats, so a number
+// past the largest float would become infinite once stored.
+bool within_limits(const NumericSetting& setting, double value) {
     const bool above =
         setting.minimum_inclusive ? value >= setting.minimum : value > setting.minimum;
     const bool below =
         setting.maximum_inclusive ? value <= setting.maximum : value < setting.maximum;
     const bool whole = !setting.integer || value == std::round(value);
-    if (std::isfinite(value) && above && below && whole) return;
+    const bool a_float = std::abs(value) <= double(std::numeric_limits<float>::max());
+    return std::isfinite(value) && a_float && above && below && whole;
+}
+
+// Why a finite number that meets the row's limits on paper is refused.
+const char* float_range_hint(double value) {
+    const bool past =
+        std::isfinite(value) && std::abs(value) > double(std::numeric_limits<float>::max());
+    return past ? " (past the largest float, 3.4e38)" : "";
+}
+
+}  // namespace
+
+void check_setting(const NumericSetting& setting, double value) {
+    if (within_limits(setting, value)) return;
     if (setting.integer)
-        throw InputError(
-            fmt::format("--{} must be {}, got {}", setting.name, describe_limits(setting), value));
-    throw InputError(fmt::format("--{} must be {}", setting.name, describe_limits(setting)));
+        throw InputError(fmt::format("--{} must be {}, got {}{}", setting.name,
+                                     describe_limits(setting), value, float_range_hint(value)));
+    throw InputError(fmt::format("--{} must be {}{}", setting.name, describe_limits(setting),
+                                 float_range_hint(value)));
 }
 
 float parse_setting_value(const NumericSetting& setting, std::string_view text) {
@@ -213,11 +232,13 @@ float parse_setting_value(const NumericSetting& setting, std::string_view text) 
         used = 0;
     }
     const bool hex = copy.find_first_of("xX") != std::string::npos;
-    if (copy.empty() || used != copy.size() || hex || !std::isfinite(value)) {
-        throw InputError(
-            fmt::format("--{} must be {}, got '{}'", setting.name, describe_limits(setting), text));
+    // The message quotes the text as given, whatever was wrong with it.
+    if (copy.empty() || used != copy.size() || hex || !within_limits(setting, value)) {
+        const bool number = used == copy.size() && !hex;
+        throw InputError(fmt::format("--{} must be {}, got '{}'{}", setting.name,
+                                     describe_limits(setting), text,
+                                     number ? float_range_hint(value) : ""));
     }
-    check_setting(setting, value);
     return float(value);
 }
 

@@ -173,6 +173,26 @@ TEST_CASE("scene scale: auto lengths are the rows' fractions of the bounding rad
     CHECK_THROWS_AS(parse_setting_value(*find_numeric_setting("guard-band"), "auto"), InputError);
 }
 
+TEST_CASE("scene scale: a refused length quotes the text given, and says when it is past a float",
+          "[scene_scale][hardening]") {
+    const NumericSetting& radius = *find_numeric_setting("ao-radius");
+    CHECK_THROWS_WITH(parse_setting_value(radius, "-1"),
+                      "--ao-radius must be a finite number of metres > 0, or auto, got '-1'");
+    CHECK_THROWS_WITH(parse_setting_value(radius, "nan"),
+                      "--ao-radius must be a finite number of metres > 0, or auto, got 'nan'");
+    // Finite as a double, but a setting holds a float, where it would be
+    // infinite.
+    CHECK_THROWS_WITH(parse_setting_value(radius, "1e40"),
+                      "--ao-radius must be a finite number of metres > 0, or auto, got '1e40' "
+                      "(past the largest float, 3.4e38)");
+    CHECK_THROWS_WITH(parse_setting_value(radius, "1e40x"),
+                      "--ao-radius must be a finite number of metres > 0, or auto, got '1e40x'");
+    CHECK(parse_setting_value(radius, "3e38") == 3e38f);
+    CHECK_THROWS_WITH(check_setting(radius, 1e40),
+                      "--ao-radius must be a finite number of metres > 0, or auto (past the "
+                      "largest float, 3.4e38)");
+}
+
 // Oracle: the warehouse's box, 30 x 8 x 40 m, from make_warehouse.
 TEST_CASE("scene scale: the radiosity radius stops at its fraction of a low interior's height",
           "[runtime][scale]") {
