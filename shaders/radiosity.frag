@@ -80,6 +80,53 @@ float area_weight(vec3 tap_position, vec3 tap_normal, float vv, float cos_y, flo
   return alpha * depth_ratio_squared * cos_phi * cos_y / (vv * cos_view);
 }
 
+// What every sample of one pixel shares.
+struct GatherPixel {
+  vec3 position;
+  vec3 normal;
+  float depth;
+  float radius_squared;
+  bool area;
+};
+
+// The sums over the used samples.
+struct GatherSum {
+  vec3 sum;        // of min(B(Y) cos(theta_X) w_ij, clamp), w_ij = 1 for the published method
+  float coverage;  // area: of cos(theta_X) w_ij
+  int used;
+};
+
+// Sample (tap, layer j): adds it where it is used. A function called once per
+// layer, not a loop over the layers: llvmpipe runs such a loop as a loop,
+// with each select on the layer made at run time (as sao.frag's estimators).
+void add_sample(inout GatherSum acc, GatherPixel px, ivec2 texel, int level, vec2 tap_centre,
+                float alpha, float tap_depth, int j) {
+  if (tap_depth <= 0.0) return;
+  vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 v = y - px.position;
+  float vv = dot(v, v);
+  if (vv >= px.radius_squared || vv <= 0.0) return;
+  vec3 w = v * inversesqrt(vv);
+  float cos_x = dot(w, px.normal);
+  if (cos_x <= 0.0) return;
+  ivec3 at = ivec3(texel, j);
+  vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
+  float cos_y = -dot(w, tap_normal);
+  if (cos_y <= 0.0) return;
+#if defined(RADIOSITY_VISIBILITY)
+  if (!radiosity_sample_visible(px.position, y, gather.layers, gather.visibility_steps, gather.visibility_thickness))
+    return;
+#endif
+  float weight = 1.0;
+  if (px.area) {
+    float ratio = tap_depth / px.depth;
+    weight = px.radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
+    acc.coverage += cos_x * weight;
+  }
+  acc.sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(gather.tap_clamp));
+  ++acc.used;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec2 depths = texelFetch(depth_pyramid, pixel, 0).rg;
@@ -89,7 +136,6 @@ void main() {
     return;
   }
   float radius = gather.radius;
-  float tap_clamp = gather.tap_clamp;
   float q = gather.q;
   int max_mip = gather.max_mip;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
@@ -102,10 +148,16 @@ void main() {
   mat2 rotation = mat2(cos(phi), sin(phi), -sin(phi), cos(phi));
   ivec2 size = ivec2(frame.internal_size.xy);
 
-  bool area = gather.method == DEEPGI_RADIOSITY_METHOD_AREA;
-  vec3 sum = vec3(0.0);
-  float coverage = 0.0;  // area: sum of cos(theta_X) w_ij (without r^2)
-  int used = 0;
+  GatherPixel px;
+  px.position = position;
+  px.normal = normal;
+  px.depth = depth;
+  px.radius_squared = radius_squared;
+  px.area = gather.method == DEEPGI_RADIOSITY_METHOD_AREA;
+  GatherSum acc;
+  acc.sum = vec3(0.0);
+  acc.coverage = 0.0;
+  acc.used = 0;
   // This frame's radial shift s (frame.cpp, from the sequence's v): tap i
   // sits at alpha = (i + 1/2 + s) / N instead of (i + 1/2) / N, along the
   // same direction. Over frames s covers [-1/2, 1/2), so the taps' radii
@@ -128,40 +180,15 @@ void main() {
     ivec2 texel = min(tap >> level, max(size >> level, ivec2(1)) - 1);
     vec2 tap_depths = texelFetch(depth_pyramid, texel, level).rg;
     vec2 tap_centre = vec2(rotated_grid_source_pixel(texel, level, size)) + 0.5;
-    for (int j = 0; j < gather.layers; ++j) {
-      float tap_depth = j == 0 ? tap_depths.r : tap_depths.g;
-      if (tap_depth <= 0.0) continue;
-      vec3 y = camera_position_at(tap_centre, tap_depth, frame.internal_size, frame.camera_ray_scale);
-      vec3 v = y - position;
-      float vv = dot(v, v);
-      if (vv >= radius_squared || vv <= 0.0) continue;
-      vec3 w = v * inversesqrt(vv);
-      float cos_x = dot(w, normal);
-      if (cos_x <= 0.0) continue;
-      ivec3 at = ivec3(texel, j);
-      vec3 tap_normal = decode_normal(texelFetch(prepared_normal, at, level).xy);
-      float cos_y = -dot(w, tap_normal);
-      if (cos_y <= 0.0) continue;
-#if defined(RADIOSITY_VISIBILITY)
-      if (!radiosity_sample_visible(position, y, gather.layers, gather.visibility_steps, gather.visibility_thickness))
-        continue;
-#endif
-      float weight = 1.0;
-      if (area) {
-        float ratio = tap_depth / depth;
-        weight = radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
-        coverage += cos_x * weight;
-      }
-      sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(tap_clamp));
-      ++used;
-    }
+    add_sample(acc, px, texel, level, tap_centre, alpha, tap_depths.r, 0);
+    if (gather.layers > 1) add_sample(acc, px, texel, level, tap_centre, alpha, tap_depths.g, 1);
   }
-  if (area) {
+  if (px.area) {
     float scale = two_pi / float(RADIOSITY_NUM_TAPS);
-    out_irradiance = vec4(sum * scale, min(coverage * (2.0 / float(RADIOSITY_NUM_TAPS)), 1.0));
+    out_irradiance = vec4(acc.sum * scale, min(acc.coverage * (2.0 / float(RADIOSITY_NUM_TAPS)), 1.0));
     return;
   }
   float samples = float(RADIOSITY_NUM_TAPS * gather.layers);
-  vec3 irradiance = used > 0 ? sum * (two_pi / float(used)) : vec3(0.0);
-  out_irradiance = vec4(irradiance, float(used) / samples);
+  vec3 irradiance = acc.used > 0 ? acc.sum * (two_pi / float(acc.used)) : vec3(0.0);
+  out_irradiance = vec4(irradiance, float(acc.used) / samples);
 }
