@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Where a still camera's E error sits after n frames (docs/radiosity.md,
-"Where cornell's error after 16 frames sits").
+"""Where a still camera's E error sits after n frames
+(docs/radiosity-studies.md, "Where cornell's error after 16 frames sits").
 
 Reads the PFMs that `temporal_convergence --maps DIR` writes for one scene
 (blurred E, layer 0's E before the blur, the converged images, depth and

@@ -24,7 +24,7 @@
 // stretch from the last point the camera saw; where it slipped behind an
 // edge into space the camera cannot see, it is not: taking every solid two
 // steps deep hid light passing below a beam or behind a column's edge
-// (docs/radiosity.md, "Light the allowance hid"). The steps sit at fixed
+// (docs/radiosity-studies.md, "Light the allowance hid"). The steps sit at fixed
 // fractions of the segment: the rotation of the taps already varies the
 // segments from frame to frame, and the CPU mirror can follow the test
 // exactly.

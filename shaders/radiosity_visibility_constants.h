@@ -6,7 +6,7 @@
 
 // Halvings of the stretch over which the marched segment left the camera's
 // sight, before the test asks whether it left through a surface
-// (docs/radiosity.md, "Light the allowance hid").
+// (docs/radiosity-studies.md, "Light the allowance hid").
 #define DEEPGI_RADIOSITY_CROSSING_HALVINGS 2
 
 #endif

@@ -19,8 +19,8 @@
 // [j / 2^b, (j + 1) / 2^b) with a + b = m holds exactly one point. The
 // targets are counted at 16 and 64 frames, and the running mean's cap is 256
 // frames, all powers of two; the additive R2 sequence this replaced has no
-// such property, and measured slower (docs/radiosity.md, "How fast a still
-// camera converges"). Point 0 is (0, 0), so the first frame keeps its taps.
+// such property, and measured slower (docs/radiosity-studies.md, "How fast a
+// still camera converges"). Point 0 is (0, 0), so the first frame keeps its taps.
 //
 // Written once in the common subset of GLSL and C++, like
 // pixel_rotation_hash.h: the includer provides `uint` and

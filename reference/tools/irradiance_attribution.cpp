@@ -1,8 +1,8 @@
 // deepgi_irradiance_attribution DUMP_DIR REFERENCE_DIR SCENE [--radius R|auto] [--layers L]
 //                               [--guard-band F] [--repeat DUMP_DIR2] [--maps DIR]
 // Where deep radiosity's error against the visible truth comes from
-// (docs/radiosity.md, "Where the error against the visible truth comes
-// from"). From the dumped G-buffer it integrates, per viewport pixel X, what
+// (docs/radiosity-studies.md, "Where the error against the visible truth
+// comes from"). From the dumped G-buffer it integrates, per viewport pixel X, what
 // the stored surfaces send to X, exactly: every level-0 pixel p of the
 // gathered layers as the planar patch the gather takes it for (solid angle
 // s^2 z_p^2 cos(phi) cos_y / (|v|^2 max(cos(view), 0.1)), facing and radius

@@ -11,7 +11,7 @@
 //   indirect   compose's radiance minus direct light and emission, over
 //              albedo / pi (so E + fill, times the ambient visibility),
 // each over the sum of the reference's E over the same pixels and channels
-// (docs/radiosity.md, "The cornell ceiling"); then the MAE and bias of E and
+// (docs/radiosity-studies.md, "The cornell ceiling"); then the MAE and bias of E and
 // of E + fill against that E, of E against the visible truth (E0 + E1, or
 // E0 with --layers 1), and of E and E + fill against E + E_sky: the truth
 // with the environment's irradiance through the gaps of the whole scene,
@@ -21,7 +21,7 @@
 // --toward, also the mean tint of E toward that colour, (e - 1/3) . (b -
 // 1/3) / |b - 1/3| with e and b chromaticities (RGB over their sum), for the
 // renderer's blurred and filtered E and the reference's E, E0, E0 + E1 and
-// E1 (docs/radiosity.md, "Atrium's blue banner"). DUMP_DIR and REFERENCE_DIR are
+// E1 (docs/radiosity-studies.md, "Atrium's blue banner"). DUMP_DIR and REFERENCE_DIR are
 // deepgi --headless --dump and deepgi reference of the same scene and size.
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"

@@ -15,8 +15,8 @@
 // depth agree, prints both against the dumped E (DUMP_DIR from deepgi
 // --headless --dump with the same scene, size, radius and layer count):
 // the share of E_unoccluded that hidden surfaces add, and the relative bias
-// of E against each (docs/radiosity.md, "Why warehouse finds more light
-// than its layers hold").
+// of E against each (docs/radiosity-studies.md, "Why warehouse finds more
+// light than its layers hold").
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"

@@ -85,7 +85,7 @@ bad $tool "--layers" "$dump" "$ref" cornell --layers 3
 bad $tool "--min-cos" "$dump" "$ref" cornell --min-cos
 bad $tool "--guard-band" "$dump" "$ref" cornell --guard-band 7
 bad $tool "--no-such-flag" "$dump" "$ref" cornell --no-such-flag 1
-# docs/radiosity.md's command lines, negative numbers included.
+# docs/radiosity-studies.md's command lines, negative numbers included.
 parses $tool "$dump" "$ref" cornell --min-cos -2
 parses $tool "$dump" "$ref" atrium --facing 0,1,0 --box -4.55,-3.45,-1,0.02,-7.25,-4.95 \
   --toward 0.05,0.12,0.80 --layers 1 --sky-rays 4 --guard-band 0.1
@@ -101,7 +101,7 @@ bad $tool "--rays" "$dump" warehouse --rays 0
 bad $tool "--stride" "$dump" warehouse --stride -2
 bad $tool "--threads" "$dump" warehouse --threads 1.5
 bad $tool "--no-such-flag" "$dump" warehouse --no-such-flag
-# docs/radiosity.md's command lines.
+# docs/radiosity-studies.md's command lines.
 parses $tool "$dump" warehouse --layers 2 --rays 256 --stride 2
 parses $tool "$dump" warehouse --radius 1.5 --rays 256 --stride 2
 parses $tool "$dump" warehouse --radius auto --threads 2 --guard-band 0.1
@@ -115,7 +115,7 @@ bad $tool "--layers" "$dump" "$ref" cornell --layers 3
 bad $tool "--repeat" "$dump" "$ref" cornell --repeat "$scratch/no-such-folder"
 bad $tool "--guard-band" "$dump" "$ref" cornell --guard-band 7
 bad $tool "--no-such-flag" "$dump" "$ref" cornell --no-such-flag
-# docs/radiosity.md's command lines.
+# docs/radiosity-studies.md's command lines.
 parses $tool "$dump" "$ref" cornell --repeat "$dump" --maps "$scratch/maps"
 parses $tool "$dump" "$ref" ref-crease --radius 1 --maps "$scratch/maps"
 help $tool DUMP_DIR REFERENCE_DIR SCENE --radius --layers --guard-band --repeat --maps

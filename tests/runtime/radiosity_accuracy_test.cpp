@@ -198,7 +198,7 @@ TEST_CASE("radiosity accuracy: the area estimator finds the ray-traced irradianc
         Renderer renderer(scene, settings, loader);
         // Still frames: the filtered E is the mean of their gathers. What is
         // measured is the blurred E, which compose reads (and the split
-        // tables of docs/radiosity.md measure): before the blur, the
+        // tables of docs/radiosity-studies.md measure): before the blur, the
         // per-pixel noise of 64 frames was most of the MAE with the scene's
         // lengths (0.120 and 0.116 against the visible truth, 0.035 and
         // 0.043 blurred), whose taps then swept a 17-unit disk.

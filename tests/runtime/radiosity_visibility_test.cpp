@@ -205,7 +205,7 @@ TEST_CASE(
     // the sheet further than that. It now leaves 3.9% with 8 steps (at
     // 192x108 after 8 frames; 5.03%, a hair over the target, with the R2
     // frame sequence before Sobol's), so the target is a hard check
-    // (docs/radiosity.md, "Thin occluders").
+    // (docs/radiosity-studies.md, "Thin occluders").
     spiral::test::TargetTable targets("radiosity-visibility-targets.md", {});
     const auto leak = [](const Region& on, const Region& off) { return on.mean() / off.mean(); };
 

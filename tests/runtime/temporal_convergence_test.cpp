@@ -6,8 +6,8 @@
 // 256 still frames), measured by tests/runtime/still_convergence.hpp, the
 // code the benchmark temporal_convergence prints the docs' table with.
 //
-// The ctest runs at 160x90 to fit the suite's time; docs/radiosity.md ("At
-// the lengths a user gets") has its figures, and compares 160x90 with
+// The ctest runs at 160x90 to fit the suite's time; docs/radiosity-studies.md
+// ("At the lengths a user gets") has its figures, and compares 160x90 with
 // 320x180 at the library's lengths.
 #include "deepgi/context.hpp"
 #include "deepgi/scene.hpp"
@@ -43,8 +43,8 @@ spiral::test::TargetTable& targets() {
             {"cornell/AO RMS / mean occlusion/16 frames", KnownMiss{0.074, at + ": 0.0673"}},
             // Warehouse at its 6 m auto radius (0.75 x its 8 m height);
             // its fine grain, on 113 flat pixels, moves with the
-            // realisation (docs/radiosity.md, "The auto radius of a low,
-            // wide interior").
+            // realisation (docs/radiosity-studies.md, "The auto radius of a
+            // low, wide interior").
             {"warehouse/E relative RMS/16 frames", KnownMiss{0.35, at + ": 0.3195"}},
             {"warehouse/E relative RMS/64 frames", KnownMiss{0.078, at + ": 0.0711"}},
             {"warehouse/E fine grain / converged's/16 frames", KnownMiss{7.0, at + ": 6.33"}},

@@ -2,8 +2,8 @@
 // section 5.4), one draw per layer into an RGBA16F array. It is the one-bounce
 // gather's source, so its format decides a bias: R11F_G11F_B10F (6- and
 // 5-bit mantissas) may truncate, and llvmpipe does, which made E about 1.5%
-// too dark on ref-crease (docs/radiosity.md, "Where the error against the
-// visible truth comes from"); a 10-bit mantissa leaves under 0.1%.
+// too dark on ref-crease (docs/radiosity-studies.md, "Where the error against
+// the visible truth comes from"); a 10-bit mantissa leaves under 0.1%.
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 

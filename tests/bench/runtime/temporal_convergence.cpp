@@ -51,8 +51,8 @@ void write_error_map(const std::filesystem::path& path, const FloatImage& ao,
 
 // --maps: the blurred E and layer 0's filtered E before the blur, as PFM
 // (`{scene}-e-{tag}.pfm`, `{scene}-e-unblurred-{tag}.pfm`), for finding
-// where E's error sits (docs/radiosity.md, "Where cornell's error after 16
-// frames sits").
+// where E's error sits (docs/radiosity-studies.md, "Where cornell's error
+// after 16 frames sits").
 void write_e_images(const std::filesystem::path& folder, const std::string& scene,
                     const std::string& tag, const deepgi::Renderer& renderer, int width,
                     int height) {
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
     int converged_frames = deepgi::convergence::default_converged_frames;
     int converged_taps = deepgi::convergence::default_converged_taps;
     // Another realisation of the same renderer, for the run-to-run spread
-    // (docs/radiosity.md, "How fast a still camera converges").
+    // (docs/radiosity-studies.md, "How fast a still camera converges").
     int rotation_seed = 0;
     int temporal_offset = 0;
     CLI::App app{"temporal_convergence: still-camera E and AO against the converged image"};
