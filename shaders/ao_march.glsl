@@ -18,7 +18,7 @@
 // two steps the allowance also fills space the part hides only from the
 // camera; the radiosity test's way out (a hit only where the ray left the
 // camera's sight through a surface) was measured here and lost far more
-// occlusion under slabs, boards and shelves than it freed (docs/deep-sao.md,
+// occlusion under slabs, boards and shelves than it freed (docs/deep-sao-studies.md,
 // "The two steps' allowance").
 
 // One layer's test of one step: the hit distance along the ray if the

@@ -211,7 +211,7 @@ bool overhang_probe(ThickPixel px, float radius, float up, out float dd, out flo
 
 // The overhang test, after the taps and with no work per tap: the taps that
 // land on a surface over X (a slab, a shelf board) lie in a few screen
-// directions and their bands need not reach the zenith (docs/deep-sao.md,
+// directions and their bands need not reach the zenith (docs/deep-sao-studies.md,
 // "Where its bias sits"). A probe r / 4 above X, then (where nothing hangs
 // over that one) a probe r / 2 above X: the low probe finds boards close
 // over a floor, which the high one passes over; the high one finds slabs
@@ -219,8 +219,8 @@ bool overhang_probe(ThickPixel px, float radius, float up, out float dd, out flo
 // over X, every seen sector's bits from that point's elevation to the
 // zenith count, with its falloff, where no tap took them. One or two
 // fetches and no loop: a probe per sector, and per-tap candidates before
-// it, cost more (docs/deep-sao.md, "Where its bias sits", the overhang
-// probe).
+// it, cost more (docs/deep-sao-studies.md, "Where its bias sits", the
+// overhang probe).
 void add_overhang(inout ThickState state, ThickPixel px, float radius) {
   float dd, height;
   if (!overhang_probe(px, radius, 0.25, dd, height) && !overhang_probe(px, radius, 0.5, dd, height)) return;

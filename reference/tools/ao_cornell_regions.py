@@ -2,8 +2,8 @@
 """Where an AO estimate's error sits on cornell: its mean absolute error
 against the ray-traced truth, split by the kind of place each pixel is in.
 
-Cornell's error is of both signs (docs/deep-sao.md, "Cornell's error by
-region"), so a bias hides it; this splits the MAE by region and, within each,
+Cornell's error is of both signs (docs/deep-sao-studies.md, "Cornell's
+error by region"), so a bias hides it; this splits the MAE by region and, within each,
 into its too-bright and too-dark parts. Each pixel's world position is
 rebuilt from its depth with cornell's default camera (at (0, 1, 3.6), looking
 down -z, 40 degrees vertical field of view, 16:9), and the room's and the

@@ -3,7 +3,7 @@
 // the screen disk is a tap (no spiral, no MIP levels, no blur), against the
 // ray-traced AV: it separates the estimator's formula and the G-buffer's
 // reach from the sampling of the shader. Options switch single terms of the
-// formula so each can be measured on its own (docs/deep-sao.md).
+// formula so each can be measured on its own (docs/deep-sao-studies.md).
 #include "deepgi/image_io.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
@@ -24,7 +24,7 @@ namespace {
 int run(int argc, char** argv) {
     CLI::App app{
         "What the solid-angle estimator converges to with every pixel of the disk a "
-        "tap, against the ray-traced ambient visibility (docs/deep-sao.md)",
+        "tap, against the ray-traced ambient visibility (docs/deep-sao-studies.md)",
         "deepgi_ao_dense_study"};
     deepgi_tools::use_tool_layout(app);
     std::filesystem::path dump, reference;

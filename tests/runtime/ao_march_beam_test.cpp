@@ -85,8 +85,8 @@ double floor_visibility(glm::vec3 p, float radius) {
 // both sides of the beam (measured: by 0.039 before it and 0.020 behind it).
 // Asking how the ray left the camera's sight, as the radiosity visibility
 // test does, brings these to 0.013 and 0.001 but makes ref-slab, ref-board,
-// ref-bench and warehouse much worse (docs/deep-sao.md, "The two steps'
-// allowance"), so the allowance is kept: a known miss of 0.01, with
+// ref-bench and warehouse much worse (docs/deep-sao-studies.md, "The two
+// steps' allowance"), so the allowance is kept: a known miss of 0.01, with
 // regression bounds about 10% above the measured gaps.
 TEST_CASE("sao: the march does not hide the space a beam hides only from the camera", "[march]") {
     HeadlessContext context;

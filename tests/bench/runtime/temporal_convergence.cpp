@@ -5,8 +5,8 @@
 // library's fixed 0.5 m AO and 1 m radiosity radii instead). The
 // measurement and its figures are tests/runtime/still_convergence.hpp's,
 // shared with the ctest that checks the targets.
-// --maps DIR writes where the AO error sits (docs/deep-sao.md, "How fast the
-// march converges") and the E images that scripts/e_error_where.py reads;
+// --maps DIR writes where the AO error sits (docs/deep-sao-studies.md, "How fast
+// the march converges") and the E images that scripts/e_error_where.py reads;
 // --check-running-mean checks that no history was lost.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
