@@ -13,11 +13,16 @@
 // --max-mip-list L1,L2,..., one more renderer per level, the default frame
 // with the radiosity taps' MIP level capped there (radiosity-max-mip), takes
 // turns with them too, and a table sets its passes against the default's.
+// With --baseline-shaders DIR, one more renderer, the default frame built
+// from the shader sources in DIR (before a shader change), takes turns with
+// them, and a table sets the radiosity, its blur and the frame against it.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
+#include "deepgi/errors.hpp"
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -39,22 +44,38 @@ int main(int argc, char** argv) {
                    "of these levels (radiosity-max-mip)")
         ->delimiter(',')
         ->check(CLI::Range(0, deepgi::limits::max_pyramid_mip_level));
+    std::string baseline_dir;
+    app.add_option("--baseline-shaders", baseline_dir,
+                   "Also time the default frame built from the shader sources in this folder "
+                   "(before a shader change), and print its passes against the default's");
     CLI11_PARSE(app, argc, argv);
     return deepgi::bench::run("radiosity_bench", [&] {
         deepgi::bench::finish(options);
         const deepgi::RenderSettings settings = deepgi::bench::settings_for(options);
         deepgi::validate(settings);
+        if (!baseline_dir.empty() && !std::filesystem::is_directory(baseline_dir))
+            throw deepgi::InputError(
+                fmt::format("--baseline-shaders {} is not a folder", baseline_dir));
         deepgi::HeadlessContext context;
         std::string measured;
         std::vector<std::string> order;
         std::vector<std::pair<std::string, Medians>> full_frames;
         std::string visibility_rows;
         std::string cap_rows;
+        std::string baseline_rows;
         fmt::print(
             "| scene | radiosity, 1 layer (ms) | radiosity, 2 layers (ms) | 2 / 1 | blur (ms) | "
             "frame, 1 layer (ms) | frame, 2 layers (ms) |\n"
             "|---|---|---|---|---|---|---|\n");
         const deepgi::ShaderLoader loader = deepgi::ShaderLoader::from_build_configuration();
+        // The baseline's sources come first, so that its files and the
+        // includes beside them win over the build's.
+        std::optional<deepgi::ShaderLoader> baseline_loader;
+        if (!baseline_dir.empty()) {
+            auto dirs = loader.include_dirs();
+            dirs.insert(dirs.begin(), std::filesystem::path(baseline_dir));
+            baseline_loader.emplace(dirs);
+        }
         for (const auto& name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(name);
             std::vector<std::string> scene_order;
@@ -76,7 +97,25 @@ int main(int argc, char** argv) {
                 capped.push_back(std::make_unique<deepgi::Renderer>(scene, cap, loader));
                 timed.push_back({capped.back().get(), scene.default_camera});
             }
+            std::optional<deepgi::Renderer> baseline;
+            if (baseline_loader) {
+                baseline.emplace(scene, settings, *baseline_loader);
+                timed.push_back({&*baseline, scene.default_camera});
+            }
             const std::vector<Medians> medians = deepgi::bench::time_alternated(timed, options);
+            if (baseline) {
+                const Medians& now = medians[0];
+                const Medians& before = medians.back();
+                // The radiosity pass holds the gather and its temporal
+                // filter; the blur filters E and the AO together.
+                const double now_gi = now.at("radiosity") + now.at("blur");
+                const double before_gi = before.at("radiosity") + before.at("blur");
+                baseline_rows += fmt::format(
+                    "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} |\n", name,
+                    before.at("radiosity"), now.at("radiosity"),
+                    now.at("radiosity") / before.at("radiosity"), now_gi / before_gi,
+                    before.at("total"), now.at("total"), now.at("total") / before.at("total"));
+            }
             for (std::size_t k = 0; k < max_mips.size(); ++k) {
                 const Medians& base = medians[0];
                 const Medians& cap = medians[timed.size() - max_mips.size() + k];
@@ -126,6 +165,13 @@ int main(int argc, char** argv) {
                 "radiosity + blur ratio | frame, default (ms) | frame, cap (ms) | ratio |\n"
                 "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n{}",
                 cap_rows);
+        if (!baseline_rows.empty())
+            fmt::print(
+                "\nThe default frame against the baseline shaders (two layers):\n\n"
+                "| scene | radiosity, baseline (ms) | radiosity, now (ms) | ratio | radiosity + "
+                "blur ratio | frame, baseline (ms) | frame, now (ms) | ratio |\n"
+                "|---|--:|--:|--:|--:|--:|--:|--:|\n{}",
+                baseline_rows);
         fmt::print("\n{}\n", measured);
         fmt::print("\nPer pass, default frame (ms):\n\n| scene |");
         for (const auto& pass : order) fmt::print(" {} |", pass);
