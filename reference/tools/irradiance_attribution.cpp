@@ -1,5 +1,6 @@
 // deepgi_irradiance_attribution DUMP_DIR REFERENCE_DIR SCENE [--radius R|auto] [--layers L]
 //                               [--guard-band F] [--repeat DUMP_DIR2] [--maps DIR]
+//                               [--view-band LO,HI]
 // Where deep radiosity's error against the visible truth comes from
 // (docs/radiosity-studies.md, "Where the error against the visible truth
 // comes from"). From the dumped G-buffer it integrates, per viewport pixel X, what
@@ -32,7 +33,11 @@
 // maps (E - T) / mean(T) as PNG (red: too bright, blue: too dark, full at
 // 0.5; grey: not compared; 3x nearest-neighbour upscaling) and PFM, plus
 // the region mask. MAE and bias as deepgi_compare_irradiance_split: sum |E -
-// T| / sum T, channels summed.
+// T| / sum T, channels summed. With --view-band LO,HI the four buffer
+// integrals keep only the stored pixels p with LO <= cos(view) < HI (the
+// G-buffer normal against the direction to the eye; the regions are
+// unchanged): 1 + such a row's bias is the share of T that the band's
+// stored pixels send.
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
@@ -54,6 +59,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace {
@@ -65,6 +72,8 @@ struct Options {
     float guard_band = deepgi::RenderSettings{}.guard_band_fraction;
     int layers = 2;
     std::optional<fs::path> repeat, maps;
+    // --view-band: the buffer integrals' stored pixels, lo <= cos(view) < hi.
+    std::optional<std::array<double, 2>> view_band;
 };
 
 // One layer of the dump, as the gather reads it at level 0.
@@ -150,6 +159,27 @@ int run(int argc, char** argv) {
                    "A second dump of the same configuration with another temporal offset")
         ->check(CLI::ExistingDirectory);
     app.add_option("--maps", maps, "A folder for the error maps (PNG and PFM)");
+    app.add_option_function<std::string>(
+           "--view-band",
+           [&](const std::string& text) {
+               // Read as doubles: the bounds compare with a double cos(view).
+               std::array<double, 2> band{};
+               const std::size_t comma = text.find(',');
+               const auto number = [](std::string_view part, double& value) {
+                   const auto [end, error] =
+                       std::from_chars(part.data(), part.data() + part.size(), value);
+                   return !part.empty() && error == std::errc() &&
+                          end == part.data() + part.size() && std::isfinite(value);
+               };
+               const std::string_view whole(text);
+               if (comma == std::string::npos || !number(whole.substr(0, comma), band[0]) ||
+                   !number(whole.substr(comma + 1), band[1]) || !(band[0] < band[1]))
+                   throw CLI::ValidationError("--view-band",
+                                              "takes LO,HI, finite numbers with LO < HI");
+               options.view_band = band;
+           },
+           "The buffer integrals only over the stored pixels with LO <= cos(view) < HI (LO,HI)")
+        ->default_str("every stored pixel");
     if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     if (radius_text != "auto") options.radius = std::stof(radius_text);
     if (!repeat.empty()) options.repeat = repeat;
@@ -259,6 +289,9 @@ int run(int argc, char** argv) {
                 const double cos_x = glm::dot(d, normal), cos_y = -glm::dot(d, p.normal);
                 if (cos_x <= 0.0 || cos_y <= 0.0) continue;
                 s.nearest = std::min(s.nearest, std::sqrt(vv));
+                if (options.view_band &&
+                    (p.cos_view < (*options.view_band)[0] || p.cos_view >= (*options.view_band)[1]))
+                    continue;
                 const double form = cos_x * cos_y * p.area / vv;
                 const glm::dvec3 sent = p.radiance * form;
                 s.traced_light += p.traced * (form / std::max(p.cos_view, 0.1));
@@ -367,6 +400,9 @@ int run(int argc, char** argv) {
 
     fmt::print("{}: radius {:.3f}, {} layer(s), {} compared pixels, visible truth mean {:.4f}\n",
                scene_name, radius, options.layers, pixels, mean);
+    if (options.view_band)
+        fmt::print("buffer integrals over the stored pixels with {} <= cos(view) < {} only\n",
+                   (*options.view_band)[0], (*options.view_band)[1]);
     // The truth's own noise: of the whole E's estimate (the split's parts
     // share its samples); E|N(0, s)| = s sqrt(2 / pi).
     double truth_noise = 0.0;

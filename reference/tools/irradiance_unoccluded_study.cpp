@@ -1,5 +1,7 @@
 // deepgi_irradiance_unoccluded_study DUMP_DIR SCENE [--radius R] [--layers L]
 //                                    [--rays N] [--stride S] [--threads T] [--guard-band F]
+//                                    [--view-bands E1,E2,...]
+//                                    [--write-truth DIR --reference REFERENCE_DIR]
 // What a gather over the layers converges to when, like deep radiosity's,
 // it tests no visibility between the pixel X and the surface Y it reads.
 // The reference (docs/reference.md) traces each direction to its first
@@ -17,6 +19,18 @@
 // the share of E_unoccluded that hidden surfaces add, and the relative bias
 // of E against each (docs/radiosity-studies.md, "Why warehouse finds more
 // light than its layers hold").
+// --view-bands E1,E2,... (increasing) also prints the share of E_unoccluded
+// sent by surfaces in each band of cos(view_Y) these edges bound, below E1,
+// from E1 to E2, ..., from the last up: view_Y is the direction from Y to
+// the eye, against the traced surface's geometric normal.
+// --write-truth DIR --reference REFERENCE_DIR writes E_unoccluded as a
+// reference folder, for deepgi_irradiance_attribution DUMP_DIR DIR SCENE to
+// measure its chain against it: REFERENCE_DIR (deepgi reference, the dump's
+// scene, size and guard band) gives its depth layers, direct radiance and
+// standard error, copied as they are; E_unoccluded of every compared pixel
+// becomes reference-irradiance-layer0.pfm (0 where not compared) and
+// reference-irradiance-layer1.pfm is 0, so that E0 + E1 is E_unoccluded.
+// It needs --stride 1: a reference holds every pixel.
 #include "deepgi/image_io.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
@@ -35,6 +49,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -46,12 +61,17 @@ struct Options {
     float radius = deepgi::auto_length;
     float guard_band = deepgi::RenderSettings{}.guard_band_fraction;
     int layers = 2, rays = 256, stride = 2, threads = 1;
+    std::vector<float> view_edges;  // --view-bands, increasing; none: no bands
+    std::filesystem::path write_truth, reference;
 };
 
 // Per pixel: the unoccluded and the visible sums (RGB), and the part of the
-// unoccluded sum whose surface is not the first one along its direction.
+// unoccluded sum whose surface is not the first one along its direction;
+// with --view-bands, the unoccluded sum (channels summed, unscaled) by band
+// of cos(view_Y).
 struct PixelSums {
     glm::dvec3 unoccluded{0.0}, visible{0.0}, hidden{0.0};
+    std::vector<double> by_view;
 };
 
 struct Random {
@@ -70,7 +90,7 @@ float surface_offset(glm::vec3 p, float length) {
 
 PixelSums trace_pixel(const deepgi::RayScene& scene, const deepgi::LayerClassifier& classify,
                       glm::vec3 position, glm::vec3 normal, float radius, int layers, int rays,
-                      std::uint64_t seed) {
+                      std::uint64_t seed, glm::vec3 eye, const std::vector<float>& view_edges) {
     const glm::dvec3 n(normal);
     // Tangent frame (Duff et al.).
     const double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), c = n.x * n.y * a;
@@ -79,6 +99,7 @@ PixelSums trace_pixel(const deepgi::RayScene& scene, const deepgi::LayerClassifi
     const glm::vec3 origin = position + normal * surface_offset(position, radius);
     Random random{seed};
     PixelSums sums;
+    if (!view_edges.empty()) sums.by_view.assign(view_edges.size() + 1, 0.0);
     for (int k = 0; k < rays; ++k) {
         // Stratified in the squared disk radius, jittered: cosine-weighted.
         const double u1 = (k + random.next()) / rays, u2 = random.next();
@@ -98,6 +119,12 @@ PixelSums trace_pixel(const deepgi::RayScene& scene, const deepgi::LayerClassifi
             if (layer >= 0 && layer < layers) {
                 const glm::dvec3 radiance = deepgi::direct_outgoing_radiance(scene, hit, y);
                 sums.unoccluded += radiance;
+                if (!view_edges.empty()) {
+                    const float cos_view = glm::dot(hit.normal, glm::normalize(eye - y));
+                    std::size_t band = 0;
+                    while (band < view_edges.size() && cos_view >= view_edges[band]) ++band;
+                    sums.by_view[band] += radiance.x + radiance.y + radiance.z;
+                }
                 if (first)
                     sums.visible += radiance;
                 else
@@ -111,6 +138,29 @@ PixelSums trace_pixel(const deepgi::RayScene& scene, const deepgi::LayerClassifi
     sums.visible *= scale;
     sums.hidden *= scale;
     return sums;
+}
+
+// --write-truth: the unoccluded light as a reference folder (see the top).
+void write_truth_folder(const Options& options, const std::vector<PixelSums>& sums,
+                        const std::vector<char>& compared, int w, int h) {
+    namespace fs = std::filesystem;
+    const auto depth = deepgi::read_pfm(options.reference / "reference-depth-layer0.pfm");
+    if (depth.width != w || depth.height != h)
+        throw std::runtime_error("the dump and the reference differ in size");
+    fs::create_directories(options.write_truth);
+    for (const char* file :
+         {"reference-depth-layer0.pfm", "reference-depth-layer1.pfm",
+          "reference-direct-radiance.pfm", "reference-irradiance-standard-error.pfm"})
+        fs::copy_file(options.reference / file, options.write_truth / file,
+                      fs::copy_options::overwrite_existing);
+    deepgi::FloatImage unoccluded{w, h, 3, std::vector<float>(std::size_t(w) * h * 3, 0.0f)};
+    const deepgi::FloatImage zero = unoccluded;
+    for (std::size_t i = 0; i < sums.size(); ++i)
+        if (compared[i])
+            for (int c = 0; c < 3; ++c)
+                unoccluded.pixels[i * 3 + std::size_t(c)] = float(sums[i].unoccluded[c]);
+    deepgi::write_pfm(options.write_truth / "reference-irradiance-layer0.pfm", unoccluded);
+    deepgi::write_pfm(options.write_truth / "reference-irradiance-layer1.pfm", zero);
 }
 
 int run(int argc, char** argv) {
@@ -151,6 +201,43 @@ int run(int argc, char** argv) {
     app.add_option("--threads", options.threads, "Worker threads")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
+    app.add_option_function<std::string>(
+           "--view-bands",
+           [&](const std::string& text) {
+               const auto edges = deepgi_tools::comma_numbers(
+                   text, std::size_t(std::count(text.begin(), text.end(), ',')) + 1);
+               const auto finite = [](float e) { return std::isfinite(e); };
+               const auto not_increasing = [](float a, float b) { return !(a < b); };
+               if (!edges || !std::all_of(edges->begin(), edges->end(), finite) ||
+                   std::adjacent_find(edges->begin(), edges->end(), not_increasing) != edges->end())
+                   throw CLI::ValidationError("--view-bands",
+                                              "takes finite edges E1,E2,... in increasing order");
+               options.view_edges = *edges;
+           },
+           "Also the share of the unoccluded light by band of cos(view_Y) between these edges "
+           "(E1,E2,...)")
+        ->default_str("no bands");
+    auto* write_truth =
+        app.add_option("--write-truth", options.write_truth,
+                       "Write the unoccluded light as a reference folder (needs --reference and "
+                       "--stride 1)");
+    auto* reference =
+        app.add_option("--reference", options.reference,
+                       "The folder deepgi reference wrote for the dump, whose depth, direct "
+                       "radiance and standard error --write-truth copies")
+            ->check(CLI::ExistingDirectory);
+    write_truth->needs(reference);
+    reference->needs(write_truth);
+    app.callback([&] {
+        if (options.write_truth.empty()) return;
+        if (options.stride != 1)
+            throw CLI::ValidationError("--write-truth",
+                                       "needs --stride 1: a reference holds every pixel");
+        std::error_code error;
+        if (std::filesystem::equivalent(options.write_truth, options.reference, error))
+            throw CLI::ValidationError("--write-truth",
+                                       "must not be the --reference folder it copies");
+    });
     if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
 
     const auto depth = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
@@ -187,7 +274,8 @@ int run(int argc, char** argv) {
                 compared[i] = 1;
                 sums[i] = trace_pixel(rays, classify, eye + direction * hit.distance, hit.normal,
                                       radius, options.layers, options.rays,
-                                      0x243F6A8885A308D3ull ^ (i * 0xD1B54A32D192ED03ull));
+                                      0x243F6A8885A308D3ull ^ (i * 0xD1B54A32D192ED03ull), eye,
+                                      options.view_edges);
             }
     };
     std::vector<std::thread> workers;
@@ -218,6 +306,7 @@ int run(int argc, char** argv) {
         }
     if (count == 0 || !(visible > 0.0))
         throw std::runtime_error("no light over the compared pixels");
+    if (!options.write_truth.empty()) write_truth_folder(options, sums, compared, w, h);
     fmt::print("{}: radius {:.3f}, {} layer(s), {} pixels, {} directions each\n", scene_name,
                radius, options.layers, count, options.rays);
     fmt::print("unoccluded / visible {:.3f}; hidden surfaces' share of unoccluded {:.3f}\n",
@@ -232,6 +321,21 @@ int run(int argc, char** argv) {
     fmt::print("| {} | {:.2f} | {} | {:.3f} | {:.3f} | {:+.3f} | {:+.3f} |\n", scene_name, radius,
                options.layers, unoccluded / visible, hidden / unoccluded, bias_visible[0] / visible,
                bias_unoccluded[0] / unoccluded);
+    if (!options.view_edges.empty()) {
+        const std::vector<float>& edges = options.view_edges;
+        std::vector<double> bands(edges.size() + 1, 0.0);
+        double all = 0.0;
+        for (std::size_t i = 0; i < sums.size(); ++i)
+            if (compared[i])
+                for (std::size_t b = 0; b < bands.size(); ++b) {
+                    bands[b] += sums[i].by_view[b];
+                    all += sums[i].by_view[b];
+                }
+        fmt::print("share of unoccluded by cos(view_Y): < {} {:.4f}", edges[0], bands[0] / all);
+        for (std::size_t b = 1; b < edges.size(); ++b)
+            fmt::print(", {} to {} {:.4f}", edges[b - 1], edges[b], bands[b] / all);
+        fmt::print(", >= {} {:.4f}\n", edges.back(), bands.back() / all);
+    }
     return 0;
 }
 

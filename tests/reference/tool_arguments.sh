@@ -101,11 +101,26 @@ bad $tool "--rays" "$dump" warehouse --rays 0
 bad $tool "--stride" "$dump" warehouse --stride -2
 bad $tool "--threads" "$dump" warehouse --threads 1.5
 bad $tool "--no-such-flag" "$dump" warehouse --no-such-flag
+bad $tool "--view-bands" "$dump" warehouse --view-bands 0.1,0.01
+bad $tool "--view-bands" "$dump" warehouse --view-bands 0.01,,0.3
+bad $tool "--view-bands" "$dump" warehouse --view-bands inf
+bad $tool "--view-bands" "$dump" warehouse --view-bands
+bad $tool "requires --reference" "$dump" warehouse --write-truth "$scratch/truth" --stride 1
+bad $tool "requires --write-truth" "$dump" warehouse --reference "$ref" --stride 1
+bad $tool "--stride 1" "$dump" warehouse --write-truth "$scratch/truth" --reference "$ref"
+bad $tool "--reference" "$dump" warehouse --write-truth "$scratch/truth" --stride 1 \
+  --reference "$scratch/no-such-folder"
+bad $tool "must not be the --reference" "$dump" warehouse --write-truth "$ref" --reference "$ref" \
+  --stride 1
 # docs/radiosity-studies.md's command lines.
 parses $tool "$dump" warehouse --layers 2 --rays 256 --stride 2
 parses $tool "$dump" warehouse --radius 1.5 --rays 256 --stride 2
 parses $tool "$dump" warehouse --radius auto --threads 2 --guard-band 0.1
-help $tool DUMP_DIR SCENE --radius --guard-band --layers --rays --stride --threads
+# docs/radiosity-studies.md's, the shortfall study.
+parses $tool "$dump" warehouse --layers 2 --rays 1024 --stride 1 --threads 2 --radius 1 \
+  --view-bands 0.01,0.1,0.3 --write-truth "$scratch/truth" --reference "$ref"
+help $tool DUMP_DIR SCENE --radius --guard-band --layers --rays --stride --threads --view-bands \
+  --write-truth --reference
 
 tool=irradiance_attribution
 bad $tool "SCENE is required" "$dump" "$ref"
@@ -115,10 +130,17 @@ bad $tool "--layers" "$dump" "$ref" cornell --layers 3
 bad $tool "--repeat" "$dump" "$ref" cornell --repeat "$scratch/no-such-folder"
 bad $tool "--guard-band" "$dump" "$ref" cornell --guard-band 7
 bad $tool "--no-such-flag" "$dump" "$ref" cornell --no-such-flag
+bad $tool "--view-band" "$dump" "$ref" cornell --view-band 0.1
+bad $tool "--view-band" "$dump" "$ref" cornell --view-band 0.1,0.01
+bad $tool "--view-band" "$dump" "$ref" cornell --view-band 0.1,0.1,0.3
+bad $tool "--view-band" "$dump" "$ref" cornell --view-band 0,nan
 # docs/radiosity-studies.md's command lines.
 parses $tool "$dump" "$ref" cornell --repeat "$dump" --maps "$scratch/maps"
 parses $tool "$dump" "$ref" ref-crease --radius 1 --maps "$scratch/maps"
-help $tool DUMP_DIR REFERENCE_DIR SCENE --radius --layers --guard-band --repeat --maps
+# docs/radiosity-studies.md's shortfall study, a negative bound included.
+parses $tool "$dump" "$ref" warehouse --radius 1 --view-band -2,0.01
+parses $tool "$dump" "$ref" warehouse --view-band 0.3,2
+help $tool DUMP_DIR REFERENCE_DIR SCENE --radius --layers --guard-band --repeat --maps --view-band
 
 tool=ao_dense_study
 bad $tool "SCENE is required" "$dump" "$ref"
