@@ -22,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -147,7 +148,18 @@ int main(int argc, char** argv) {
                        two.at("radiosity") / one.at("radiosity"), two.at("blur"), one.at("total"),
                        two.at("total"));
             std::fflush(stdout);
-            if (order.empty()) order = scene_order;
+            // Every scene's passes, so that a pass one scene adds (the
+            // gallery's reflections) gets its column: each new pass goes
+            // after the pass that precedes it in its own scene.
+            for (std::size_t k = 0; k < scene_order.size(); ++k) {
+                if (std::find(order.begin(), order.end(), scene_order[k]) != order.end()) continue;
+                auto at = order.begin();
+                if (k > 0) {
+                    const auto previous = std::find(order.begin(), order.end(), scene_order[k - 1]);
+                    if (previous != order.end()) at = previous + 1;
+                }
+                order.insert(at, scene_order[k]);
+            }
             full_frames.emplace_back(name, two);
         }
 
