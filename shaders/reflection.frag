@@ -114,28 +114,33 @@ bool on_buffer(vec3 q, vec2 at) {
          all(lessThan(at, frame.internal_size.xy));
 }
 
-// Which layer's solid contains q (march_empty: none), or march_stop.
+// Whether layer `layer`'s solid at pixel p contains q, at linear depth z.
+bool solid_contains(vec3 q, ivec2 p, int layer, float z, float step_length) {
+  float near_plane = frame.camera_ray_scale.z;
+  float stored = texelFetch(gbuffer_depth, ivec3(p, layer), 0).r;
+  if (stored <= 0.0) return false;
+  float depth = near_plane / stored;
+  if (z <= depth) return false;
+  float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
+  float solid_end = back_face > 0.0 ? max(near_plane / back_face, depth + 2.0 * step_length)
+                                    : depth + reflection.thickness;
+  if (z >= solid_end) return false;
+  vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+  vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
+  return dot(q - surface, surface_normal) < -1.0e-3 * z;
+}
+
+// Which layer's solid contains q (march_empty: none), or march_stop. One
+// call per layer rather than a loop over the layers, as the gathers do
+// (llvmpipe keeps such a loop a loop, selecting on the layer at run time).
 int inside_layer(vec3 q, float step_length, out ivec2 p) {
   vec2 at = pixel_of(q);
   p = ivec2(0);
   if (!on_buffer(q, at)) return march_stop;
   p = ivec2(at);
   float z = -q.z;
-  float near_plane = frame.camera_ray_scale.z;
-  for (int layer = 0; layer < reflection.layers; ++layer) {
-    float stored = texelFetch(gbuffer_depth, ivec3(p, layer), 0).r;
-    if (stored <= 0.0) continue;
-    float depth = near_plane / stored;
-    if (z <= depth) continue;
-    float back_face = texelFetch(backface_depth, ivec3(p, layer), 0).r;
-    float solid_end = back_face > 0.0 ? max(near_plane / back_face, depth + 2.0 * step_length)
-                                      : depth + reflection.thickness;
-    if (z >= solid_end) continue;
-    vec3 surface = camera_position_at(vec2(p) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
-    vec3 surface_normal = decode_normal(texelFetch(gbuffer_normal, ivec3(p, layer), 0).xy);
-    if (dot(q - surface, surface_normal) >= -1.0e-3 * z) continue;
-    return layer;
-  }
+  if (solid_contains(q, p, 0, z, step_length)) return 0;
+  if (reflection.layers > 1 && solid_contains(q, p, 1, z, step_length)) return 1;
   return march_empty;
 }
 
