@@ -55,6 +55,18 @@ inline std::string describe_parse_error(const CLI::ParseError& error) {
             return fmt::format("{} was given {} times; give it once", message.substr(0, at),
                                message.substr(at + marker.size()));
     }
+    // Plain numbers only reach CLI11's conversion (strict_numbers.hpp), so a
+    // failed conversion is a number the option's type cannot hold:
+    // "Could not convert: --frames = 99999999999".
+    if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr) {
+        const std::string marker = "Could not convert: ";
+        const auto at = message.find(marker);
+        const auto equals = message.find(" = ", at == std::string::npos ? 0 : at);
+        if (at != std::string::npos && equals != std::string::npos)
+            return fmt::format("{} '{}' is out of range for this option",
+                               message.substr(at + marker.size(), equals - at - marker.size()),
+                               message.substr(equals + 3));
+    }
     if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) {
         const auto colon = message.find(": ");
         std::vector<std::string> words;

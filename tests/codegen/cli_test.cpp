@@ -88,6 +88,8 @@ TEST_CASE("bad input: one line on stderr naming the problem, exit status 2, no o
         {"blur --radius 4 --sigma wide", "--sigma"},
         {"blur", "--radius"},
         {"table --max-n 3 --max-n 4", "--max-n was given 2 times; give it once"},
+        {"table --max-n 99999999999999999",
+         "--max-n '99999999999999999' is out of range for this option"},
         {"table --bogus", "unknown option '--bogus'"},
         {"ties --n 4 extra", "unexpected argument 'extra'"},
         {"header --pass ao --taps 11 --out no-such-dir/sub/ao.glsl", "no-such-dir/sub/ao.glsl"},

@@ -78,6 +78,10 @@ TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtim
     require_one_line_error("--headless --size 160x90 --size 320x180",
                            "--size was given 2 times; give it once");
     require_one_line_error("--headless --size 160x90 --frames two", "--frames");
+    // A plain number too large for the option's int: CLI11's own "Could not
+    // convert" is put in the project's words.
+    require_one_line_error("--headless --size 160x90 --frames 99999999999",
+                           "--frames '99999999999' is out of range for this option");
     require_one_line_error("--headless --size 160x90 --view sideways", "--view");
     require_one_line_error("--headless --size 160x90 --radiosity-method mean",
                            "--radiosity-method");
