@@ -59,8 +59,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <string_view>
-#include <system_error>
 #include <vector>
 
 namespace {
@@ -163,20 +161,12 @@ int run(int argc, char** argv) {
            "--view-band",
            [&](const std::string& text) {
                // Read as doubles: the bounds compare with a double cos(view).
-               std::array<double, 2> band{};
-               const std::size_t comma = text.find(',');
-               const auto number = [](std::string_view part, double& value) {
-                   const auto [end, error] =
-                       std::from_chars(part.data(), part.data() + part.size(), value);
-                   return !part.empty() && error == std::errc() &&
-                          end == part.data() + part.size() && std::isfinite(value);
-               };
-               const std::string_view whole(text);
-               if (comma == std::string::npos || !number(whole.substr(0, comma), band[0]) ||
-                   !number(whole.substr(comma + 1), band[1]) || !(band[0] < band[1]))
+               const auto band = deepgi_tools::comma_numbers<double>(text, 2);
+               if (!band || !std::isfinite((*band)[0]) || !std::isfinite((*band)[1]) ||
+                   !((*band)[0] < (*band)[1]))
                    throw CLI::ValidationError("--view-band",
                                               "takes LO,HI, finite numbers with LO < HI");
-               options.view_band = band;
+               options.view_band = std::array<double, 2>{(*band)[0], (*band)[1]};
            },
            "The buffer integrals only over the stored pixels with LO <= cos(view) < HI (LO,HI)")
         ->default_str("every stored pixel");

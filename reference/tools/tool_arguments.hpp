@@ -101,14 +101,15 @@ inline CLI::Option* add_guard_band(CLI::App& app, float& fraction) {
 }
 
 // "X,Y,Z": exactly `count` decimal numbers separated by commas, or nullopt.
-inline std::optional<std::vector<float>> comma_numbers(std::string_view text, std::size_t count) {
-    std::vector<float> values;
+template <typename Number = float>
+std::optional<std::vector<Number>> comma_numbers(std::string_view text, std::size_t count) {
+    std::vector<Number> values;
     std::size_t start = 0;
     for (;;) {
         const std::size_t comma = text.find(',', start);
         const std::string_view part =
             text.substr(start, comma == std::string_view::npos ? comma : comma - start);
-        float value = 0.0f;
+        Number value = 0;
         const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (part.empty() || error != std::errc() || end != part.data() + part.size())
             return std::nullopt;

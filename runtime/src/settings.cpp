@@ -186,23 +186,24 @@ std::string describe_limits(const NumericSetting& setting) {
 
 namespace {
 
-// Within the row's limits, and a float: settings hold floats, so a number
-// past the largest float would become infinite once stored.
+// Settings hold floats: a finite double past the largest float would become
+// infinite once stored.
+bool past_float(double value) {
+    return std::isfinite(value) && std::abs(value) > double(std::numeric_limits<float>::max());
+}
+
 bool within_limits(const NumericSetting& setting, double value) {
     const bool above =
         setting.minimum_inclusive ? value >= setting.minimum : value > setting.minimum;
     const bool below =
         setting.maximum_inclusive ? value <= setting.maximum : value < setting.maximum;
     const bool whole = !setting.integer || value == std::round(value);
-    const bool a_float = std::abs(value) <= double(std::numeric_limits<float>::max());
-    return std::isfinite(value) && a_float && above && below && whole;
+    return std::isfinite(value) && !past_float(value) && above && below && whole;
 }
 
 // Why a finite number that meets the row's limits on paper is refused.
 const char* float_range_hint(double value) {
-    const bool past =
-        std::isfinite(value) && std::abs(value) > double(std::numeric_limits<float>::max());
-    return past ? " (past the largest float, 3.4e38)" : "";
+    return past_float(value) ? " (past the largest float, 3.4e38)" : "";
 }
 
 }  // namespace

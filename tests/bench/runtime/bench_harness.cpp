@@ -10,6 +10,12 @@
 
 namespace deepgi::bench {
 
+ShaderLoader with_sources_first(const ShaderLoader& loader, const std::filesystem::path& dir) {
+    auto dirs = loader.include_dirs();
+    dirs.insert(dirs.begin(), dir);
+    return ShaderLoader(dirs);
+}
+
 void add_options(CLI::App& app, Options& options) {
     app.add_option("--size", options.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--scenes", options.scenes, "Built-in scenes or glTF files, comma-separated")

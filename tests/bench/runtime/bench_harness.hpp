@@ -7,9 +7,11 @@
 #include "deepgi/renderer.hpp"
 #include "deepgi/scene.hpp"
 #include "deepgi/settings.hpp"
+#include "deepgi/shader_loader.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -35,6 +37,11 @@ struct Options {
     TimingMode timing_mode = TimingMode::cpu;
     std::vector<std::pair<const NumericSetting*, float>> set_values;
 };
+
+// `loader` with `dir` searched first, so that the shader sources in it and
+// the includes beside them win over the loader's own (--baseline-shaders:
+// the shaders before a change, timed against today's in one alternation).
+ShaderLoader with_sources_first(const ShaderLoader& loader, const std::filesystem::path& dir);
 
 // Adds the shared flags; `options` holds each benchmark's defaults.
 void add_options(CLI::App& app, Options& options);

@@ -69,14 +69,9 @@ int main(int argc, char** argv) {
             "frame, 1 layer (ms) | frame, 2 layers (ms) |\n"
             "|---|---|---|---|---|---|---|\n");
         const deepgi::ShaderLoader loader = deepgi::ShaderLoader::from_build_configuration();
-        // The baseline's sources come first, so that its files and the
-        // includes beside them win over the build's.
         std::optional<deepgi::ShaderLoader> baseline_loader;
-        if (!baseline_dir.empty()) {
-            auto dirs = loader.include_dirs();
-            dirs.insert(dirs.begin(), std::filesystem::path(baseline_dir));
-            baseline_loader.emplace(dirs);
-        }
+        if (!baseline_dir.empty())
+            baseline_loader = deepgi::bench::with_sources_first(loader, baseline_dir);
         for (const auto& name : options.scenes) {
             const deepgi::Scene scene = deepgi::load_scene(name);
             std::vector<std::string> scene_order;

@@ -95,14 +95,10 @@ int main(int argc, char** argv) {
         deepgi::HeadlessContext context;
         deepgi::study::ScratchFolder headers;
         const deepgi::ShaderLoader loader = deepgi::study::loader_with_override(headers.path());
-        // The baseline's sources come first, so that its sao.frag and the
-        // includes beside it win; the run's ao_taps.glsl is not among them.
+        // The run's ao_taps.glsl is not among the baseline's sources.
         std::optional<deepgi::ShaderLoader> baseline_loader;
-        if (!baseline_dir.empty()) {
-            auto dirs = loader.include_dirs();
-            dirs.insert(dirs.begin(), std::filesystem::path(baseline_dir));
-            baseline_loader.emplace(dirs);
-        }
+        if (!baseline_dir.empty())
+            baseline_loader = deepgi::bench::with_sources_first(loader, baseline_dir);
         const std::string first_column = baseline_loader ? "baseline, 2 layers" : "1 layer";
         std::string measured;
         fmt::print(
