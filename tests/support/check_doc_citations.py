@@ -39,7 +39,7 @@ def tracked_files(root):
     except (OSError, subprocess.CalledProcessError):
         print('skipped: not a git checkout, so the tracked files are unknown')
         sys.exit(77)
-    return out.split()
+    return sorted(set(out.split()))  # a file in a merge conflict is listed per stage
 
 
 def titles_of(path):
@@ -64,14 +64,14 @@ def normalise(text):
     return text.rstrip('.:')
 
 
-def resolve(doc, citing_file, docs_by_name, root):
+def resolve(doc, citing_file, docs):
     """The tracked document a citation names: a path relative to the
     repository or to the citing file, else the one document of that name."""
     for candidate in (doc, os.path.normpath(
             os.path.join(os.path.dirname(citing_file), doc))):
-        if candidate in docs_by_name.values():
+        if candidate in docs:
             return candidate
-    matches = [p for name, p in docs_by_name.items()
+    matches = [p for p in sorted(docs)
                if os.path.basename(p) == os.path.basename(doc)]
     docs_first = [p for p in matches if p.startswith('docs/')]
     return (docs_first or matches or [None])[0]
@@ -80,7 +80,7 @@ def resolve(doc, citing_file, docs_by_name, root):
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else '.'
     files = tracked_files(root)
-    docs = {f: f for f in files if f.endswith('.md')}
+    docs = {f for f in files if f.endswith('.md')}
     titles = {}
     problems = []
     checked = 0
@@ -96,7 +96,7 @@ def main():
                         text)
         for m in CITATION.finditer(folded):
             doc, section, title = m.group(1), m.group(2), m.group(3)
-            target = resolve(doc, f, docs, root)
+            target = resolve(doc, f, docs)
             if target is None:
                 continue  # another project's file name, not ours
             if target not in titles:
@@ -112,7 +112,7 @@ def main():
                 problems.append(f'{f}: {doc}, "{title}": no such heading '
                                 f'or bold lead in {target}')
         for m in SECTION_ONLY.finditer(folded):
-            target = resolve(m.group(1), f, docs, root)
+            target = resolve(m.group(1), f, docs)
             if target is None:
                 continue
             if target not in titles:
