@@ -15,7 +15,8 @@
 // turns with them too, and a table sets its passes against the default's.
 // With --baseline-shaders DIR, one more renderer, the default frame built
 // from the shader sources in DIR (before a shader change), takes turns with
-// them, and a table sets the radiosity, its blur and the frame against it.
+// them, and a table sets the radiosity, its blur, the prepare pass and the
+// frame against it.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -104,13 +105,21 @@ int main(int argc, char** argv) {
                 const Medians& before = medians.back();
                 // The radiosity pass holds the gather and its temporal
                 // filter; the blur filters E and the AO together.
+                // The prepare pass builds what the gather reads.
                 const double now_gi = now.at("radiosity") + now.at("blur");
                 const double before_gi = before.at("radiosity") + before.at("blur");
+                const double now_all = now_gi + now.at("radiosity_prepare");
+                const double before_all = before_gi + before.at("radiosity_prepare");
                 baseline_rows += fmt::format(
-                    "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} |\n", name,
-                    before.at("radiosity"), now.at("radiosity"),
+                    "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} "
+                    "| "
+                    "{:.1f} | {:.1f} | {:.2f} |\n",
+                    name, before.at("radiosity"), now.at("radiosity"),
                     now.at("radiosity") / before.at("radiosity"), now_gi / before_gi,
-                    before.at("total"), now.at("total"), now.at("total") / before.at("total"));
+                    before.at("radiosity_prepare"), now.at("radiosity_prepare"),
+                    now.at("radiosity_prepare") / before.at("radiosity_prepare"),
+                    now_all / before_all, before.at("total"), now.at("total"),
+                    now.at("total") / before.at("total"));
             }
             for (std::size_t k = 0; k < max_mips.size(); ++k) {
                 const Medians& base = medians[0];
@@ -176,8 +185,9 @@ int main(int argc, char** argv) {
             fmt::print(
                 "\nThe default frame against the baseline shaders (two layers):\n\n"
                 "| scene | radiosity, baseline (ms) | radiosity, now (ms) | ratio | radiosity + "
-                "blur ratio | frame, baseline (ms) | frame, now (ms) | ratio |\n"
-                "|---|--:|--:|--:|--:|--:|--:|--:|\n{}",
+                "blur ratio | prepare, baseline (ms) | prepare, now (ms) | ratio | prepare + "
+                "radiosity + blur ratio | frame, baseline (ms) | frame, now (ms) | ratio |\n"
+                "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n{}",
                 baseline_rows);
         fmt::print("\n{}\n", measured);
         fmt::print("\nPer pass, default frame (ms):\n\n| scene |");
