@@ -38,8 +38,8 @@ struct RadiosityGatherParameters {
 struct RadiosityPrepareParameters {
   float boost;     // 0: boost(rho) = 1; 1: the saturation boost
   float rho_prop;  // share of last frame's indirect light fed into this gather
+  float prefilter;  // 1: a coarse texel's radiance is its surface's mean; 0: its one pixel's
   float unused0;
-  float unused1;
 };
 
 // The bilateral blur (bilateral_blur.frag); docs/deep-sao.md, "bilateral blur".

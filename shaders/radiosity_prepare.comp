@@ -10,10 +10,18 @@
 // being last frame's filtered E reprojected with the motion vectors
 // (history_reprojection.glsl; 0 where history is rejected, so a disoccluded
 // pixel starts with one bounce), and the octahedral normal.
-// Level m + 1 copies one texel of each 2x2 block of level m, the same corner
-// as depth_pyramid.comp (rotated_grid.glsl), so texel t of level m holds
-// radiance, normal and depth of one and the same level-0 pixel. Averaging
-// would mix the radiance of a foreground and a background.
+// Level m + 1 keeps one texel of each 2x2 block of level m, the same corner
+// as depth_pyramid.comp (rotated_grid.glsl), so texel t of level m holds the
+// normal and depth of one and the same level-0 pixel, the texel's
+// representative. Its radiance is, with `prefilter` on (the default), the
+// mean over the block's texels that lie on the representative's surface,
+// each weighted by the level-0 pixels it stands for (radiance.a): a coarse
+// tap then reads the light of the area it stands for, not one pixel of a
+// lattice fixed in the image that the frames never average away. "On the
+// surface" is a normal within about 25 degrees (cosine 0.9) and a position
+// within about 6 degrees of the representative's tangent plane as seen from
+// it (|n . d| <= 0.1 |d|): a plain mean would mix a foreground's radiance
+// into a background's (docs/radiosity.md, "Prefiltered levels").
 //
 // Variant PREPARE_BASE_LEVEL writes level 0; the other variant writes a level
 // from the level above it.
@@ -41,14 +49,17 @@ layout(binding = 15) uniform sampler2D previous_irradiance0;
 layout(binding = 16) uniform sampler2D previous_irradiance1;
 layout(binding = 19) uniform sampler2D history_key0;
 layout(binding = 20) uniform sampler2D history_key1;
-// The boost amount and rho_prop (pass_parameters.h).
-layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityPrepareBlock {
-  RadiosityPrepareParameters prepare;
-};
 #else
 layout(binding = 0, rgba16f) uniform readonly image2DArray radiance_source;
 layout(binding = 2, rg16f) uniform readonly image2DArray normal_source;
+layout(binding = 5) uniform sampler2D depth_pyramid;  // the sources' depths, at source_level
+layout(location = 0) uniform int source_level;        // the level read; this dispatch writes the next
 #endif
+// Every variant reads the block: the base level its boost and rho_prop, the
+// others `prefilter`.
+layout(std140, binding = DEEPGI_UBO_PASS) uniform RadiosityPrepareBlock {
+  RadiosityPrepareParameters prepare;
+};
 
 
 #ifdef PREPARE_BASE_LEVEL
@@ -70,6 +81,38 @@ vec3 previous_irradiance(ivec2 pixel, int layer, vec3 normal) {
   }
   if (!find_history(pixel, 1, normal, gbuffer_motion, history_key1, texel, key)) return vec3(0.0);
   return texelFetch(previous_irradiance1, texel, 0).rgb;
+}
+#else
+// Camera-space position of the level-0 pixel that texel `at` of the source
+// level stands for, at its stored depth.
+vec3 source_position(ivec2 at, float depth) {
+  ivec2 pixel = rotated_grid_source_pixel(at, source_level, ivec2(frame.internal_size.xy));
+  return camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
+}
+
+// Radiance (rgb) and weight (a: level-0 pixels it stands for) of texel
+// `texel` of the next level from its 2x2 block at the source level, whose
+// texel `chosen` is the representative.
+vec4 reduced_radiance(ivec2 texel, ivec2 chosen, int layer) {
+  vec4 kept = imageLoad(radiance_source, ivec3(chosen, layer));
+  if (prepare.prefilter == 0.0 || kept.a <= 0.0) return kept;
+  ivec2 size = imageSize(radiance_source).xy;
+  vec3 normal = decode_normal(imageLoad(normal_source, ivec3(chosen, layer)).xy);
+  vec3 position = source_position(chosen, texelFetch(depth_pyramid, chosen, source_level)[layer]);
+  vec4 sum = vec4(0.0);
+  for (int j = 0; j < 4; ++j) {
+    ivec2 at = 2 * texel + ivec2(j & 1, j >> 1);
+    if (any(greaterThanEqual(at, size))) continue;
+    vec4 radiance = imageLoad(radiance_source, ivec3(at, layer));
+    if (radiance.a <= 0.0) continue;
+    vec3 d = source_position(at, texelFetch(depth_pyramid, at, source_level)[layer]) - position;
+    vec3 n = decode_normal(imageLoad(normal_source, ivec3(at, layer)).xy);
+    if (dot(n, normal) < 0.9 || abs(dot(normal, d)) > 0.1 * length(d)) continue;
+    sum += vec4(radiance.rgb * radiance.a, radiance.a);
+  }
+  // The representative is one of the four (clamped at an odd edge, it is
+  // the block's own edge texel) and passes with d = 0, so sum.a > 0.
+  return vec4(sum.rgb / sum.a, sum.a);
 }
 #endif
 
@@ -94,7 +137,7 @@ void main() {
     imageStore(normal_destination, at, vec4(encoded_normal, 0.0, 0.0));
 #else
     ivec2 from = min(2 * texel + rotated_grid_corner(texel), imageSize(radiance_source).xy - 1);
-    imageStore(radiance_destination, ivec3(texel, layer), imageLoad(radiance_source, ivec3(from, layer)));
+    imageStore(radiance_destination, ivec3(texel, layer), reduced_radiance(texel, from, layer));
     imageStore(normal_destination, ivec3(texel, layer), imageLoad(normal_source, ivec3(from, layer)));
 #endif
   }

@@ -43,7 +43,7 @@ constexpr SettingEffect drop_history = SettingEffect::drop_history;
 // One row per numeric setting. Slider ranges sit inside the limits; where a
 // setting has no upper limit the slider stops at what is still useful in the
 // built-in scenes.
-const std::array<NumericSetting, 33> numeric_table = {{
+const std::array<NumericSetting, 34> numeric_table = {{
     {.name = "min-separation",
      .label = "min separation (m)",
      .group = "frame",
@@ -309,6 +309,18 @@ const std::array<NumericSetting, 33> numeric_table = {{
      .slider_min = 0.0f,
      .slider_max = float(limits::max_pyramid_mip_level),
      DEEPGI_INT_FIELD(radiosity.max_mip_level)},
+    {.name = "radiosity-prefilter",
+     .label = "prefiltered levels",
+     .group = "radiosity",
+     .owner = "radiosity_prepare",
+     .help = "Deep radiosity: 1: a coarse MIP texel's radiance is the mean over its block's "
+             "pixels on the surface of the pixel it keeps; 0: that one pixel's",
+     .integer = true,
+     .minimum = 0.0f,
+     .maximum = 1.0f,
+     .slider_min = 0.0f,
+     .slider_max = 1.0f,
+     DEEPGI_INT_FIELD(radiosity.prefilter)},
     {.name = "rho-prop",
      .label = "rho_prop (bounces)",
      .group = "radiosity",

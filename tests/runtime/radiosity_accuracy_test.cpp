@@ -136,13 +136,13 @@ spiral::test::TargetTable& targets() {
          {"area/ref-board, lengths auto/relative abs(bias)/64 frames", {0.406, "measured 0.369"}},
          {"area/ref-board, lengths auto/relative MAE/64 frames", {0.41, "measured 0.373"}},
          // The blue banner (x = -4, seen obliquely): with two layers the
-         // floor before it turns away from blue (tint 1 layer -0.033, 2
-         // layers -0.100 at 192x108 and the 8.2 m radius before its cap),
-         // and so does the ray-traced visible truth (E0 0.032, E0 + E1
-         // -0.071): what layer 1 holds there lights that floor with colours
-         // away from blue. The target asks what the truth does not; the
-         // hard check below follows the truth.
-         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.073, "measured 0.0695"}},
+         // floor before it turns away from blue (tint 1 layer 0.078, 2
+         // layers -0.005 at 192x108), and so does the ray-traced visible
+         // truth (E0 0.086, E0 + E1 -0.069): what layer 1 holds there
+         // lights that floor with colours away from blue. The target asks
+         // what the truth does not; the hard check below follows the truth.
+         // (Before the prefiltered levels the difference was 0.0695.)
+         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.091, "measured 0.0828"}},
          // Magenta leaned toward its banner by under 1e-3 with fixed radii;
          // with the radial shift it leans away by as little: a difference
          // at the level of 8 frames' noise. (Red, banner 4, did too with the

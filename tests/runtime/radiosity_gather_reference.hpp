@@ -85,12 +85,87 @@ inline int mip_levels(const RenderSettings& settings, int width, int height) {
     return std::min(settings.depth_pyramid.max_mip_level, deepest) + 1;
 }
 
+// The radiance a tap reads at each MIP level of one layer: rgb and, in the
+// fourth channel, the level-0 pixels it stands for (0: no surface). Level 0
+// is direct + emissive (layer 0 only). With the prefilter, texel t of level
+// m + 1 is the weighted mean of the texels of its 2x2 block at level m that
+// lie on the surface of the block's representative r = 2t + corner(t)
+// (clamped): normal n with n . n_r >= 0.9 and position P with |n_r . (P -
+// P_r)| <= 0.1 |P - P_r|, positions and normals those of the level-0 pixels
+// the texels stand for (docs/radiosity.md, "Prefiltered levels"); without
+// it, the representative's own radiance, so every level holds one level-0
+// pixel's.
+inline std::vector<FloatImage> radiance_levels(const GatherInputs& inputs, int layer, int levels,
+                                               bool prefilter) {
+    const int width = inputs.depth[0].width;
+    const int height = inputs.depth[0].height;
+    std::vector<FloatImage> result;
+    FloatImage base{width, height, 4, std::vector<float>(std::size_t(width) * height * 4)};
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            if (inputs.depth[layer].at(x, y, 0) <= 0.0f) continue;
+            glm::vec3 radiance = rgb(inputs.direct[layer], x, y);
+            if (layer == 0) radiance += rgb(inputs.emissive, x, y);
+            const std::size_t i = 4 * (std::size_t(y) * width + x);
+            for (int k = 0; k < 3; ++k) base.pixels[i + k] = radiance[k];
+            base.pixels[i + 3] = 1.0f;
+        }
+    }
+    result.push_back(std::move(base));
+    // Position and normal of the level-0 pixel texel `t` of `level` stands for.
+    const auto geometry = [&](glm::ivec2 t, int level) {
+        const glm::ivec2 p = rotated_grid_source(t, level, width, height);
+        const float depth = inputs.depth[layer].at(p.x, p.y, 0);
+        return std::pair{position_at(inputs, p.x, p.y, depth), rgb(inputs.normal[layer], p.x, p.y)};
+    };
+    for (int level = 1; level < levels; ++level) {
+        const FloatImage& source = result.back();
+        const int w = std::max(1, width >> level);
+        const int h = std::max(1, height >> level);
+        FloatImage next{w, h, 4, std::vector<float>(std::size_t(w) * h * 4)};
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const glm::ivec2 t(x, y);
+                const glm::ivec2 chosen = glm::min(2 * t + glm::ivec2((y & 1) ^ 1, (x & 1) ^ 1),
+                                                   glm::ivec2(source.width - 1, source.height - 1));
+                const auto value = [&](glm::ivec2 at) {
+                    return glm::vec4(source.at(at.x, at.y, 0), source.at(at.x, at.y, 1),
+                                     source.at(at.x, at.y, 2), source.at(at.x, at.y, 3));
+                };
+                glm::vec4 out = value(chosen);
+                if (prefilter && out.a > 0.0f) {
+                    const auto [position, normal] = geometry(chosen, level - 1);
+                    glm::vec4 sum(0.0f);
+                    for (int j = 0; j < 4; ++j) {
+                        const glm::ivec2 at = 2 * t + glm::ivec2(j & 1, j >> 1);
+                        if (at.x >= source.width || at.y >= source.height) continue;
+                        const glm::vec4 radiance = value(at);
+                        if (radiance.a <= 0.0f) continue;
+                        const auto [p, n] = geometry(at, level - 1);
+                        const glm::vec3 d = p - position;
+                        if (glm::dot(n, normal) < 0.9f ||
+                            std::abs(glm::dot(normal, d)) > 0.1f * glm::length(d))
+                            continue;
+                        sum += glm::vec4(glm::vec3(radiance) * radiance.a, radiance.a);
+                    }
+                    out = glm::vec4(glm::vec3(sum) / sum.a, sum.a);
+                }
+                const std::size_t i = 4 * (std::size_t(y) * w + x);
+                for (int k = 0; k < 4; ++k) next.pixels[i + k] = out[k];
+            }
+        }
+        result.push_back(std::move(next));
+    }
+    return result;
+}
+
 // E (rgb) and confidence of one layer with boost 1 (boost amount 0) and no
 // previous frame (first frame, whose pattern rotation is 0): tap i reads MIP
 // level clamp(floor(log2(alpha_i R / q)), 0, deepest), deepest the radiosity's
-// cap or the pyramid's last level, whichever is smaller, i.e. the inputs of the
-// level-0 pixel that level's rotated-grid texel holds, with Y rebuilt at that
-// pixel's centre. The estimators, as docs/radiosity.md states them:
+// cap or the pyramid's last level, whichever is smaller, i.e. the position and
+// normal of the level-0 pixel that level's rotated-grid texel holds, with Y
+// rebuilt at that pixel's centre, and the radiance radiance_levels() gives the
+// texel. The estimators, as docs/radiosity.md states them:
 //   published: E = 2 pi / M * sum min(B cos_x, clamp),   c = M / (taps * layers)
 //   area:      E = 2 pi / N * sum min(B cos_x w, clamp), c = min(1, 2 / N * sum cos_x w),
 //              w = alpha_i (z_Y / z_X)^2 cos(phi_Y) cos_y r^2 / (|v|^2 max(cos(view_Y), 0.1))
@@ -111,6 +186,9 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
     FloatImage irradiance{width, height, 3, std::vector<float>(std::size_t(width) * height * 3)};
     FloatImage confidence{width, height, 1, std::vector<float>(std::size_t(width) * height)};
     const float radius_squared = settings.radius * settings.radius;
+    std::array<std::vector<FloatImage>, 2> radiance;
+    for (int j = 0; j < settings.layers; ++j)
+        radiance[j] = radiance_levels(inputs, j, deepest + 1, settings.prefilter != 0);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const float depth = inputs.depth[layer].at(x, y, 0);
@@ -167,9 +245,8 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
                                  (vv * cos_view);
                         coverage += cos_x * weight;
                     }
-                    glm::vec3 radiance = rgb(inputs.direct[j], source.x, source.y);
-                    if (j == 0) radiance += rgb(inputs.emissive, source.x, source.y);
-                    sum += glm::min(radiance * (cos_x * weight), glm::vec3(settings.tap_clamp));
+                    const glm::vec3 b = rgb(radiance[j][std::size_t(level)], texel.x, texel.y);
+                    sum += glm::min(b * (cos_x * weight), glm::vec3(settings.tap_clamp));
                     ++used;
                 }
             }
@@ -187,6 +264,18 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
         }
     }
     return {irradiance, confidence};
+}
+
+// The relative tolerance of the GPU gather against reference_gather(): 1e-3,
+// plus, with the prefilter, one rounding of 2^-11 per level a tap can read.
+// The prefiltered levels store each level's means as half floats, each built
+// from the level below, and llvmpipe converts toward zero, so the roundings
+// add; the CPU's float means have none.
+inline float gather_tolerance(const RenderSettings& settings) {
+    const int deepest = std::min(mip_levels(settings, settings.width, settings.height) - 1,
+                                 settings.radiosity.max_mip_level);
+    return 1e-3f +
+           (settings.radiosity.prefilter != 0 ? float(deepest) * std::ldexp(1.0f, -11) : 0.0f);
 }
 
 // The gather tests' frame: 192x108, a shadow map fine enough for cornell's

@@ -38,17 +38,20 @@ spiral::test::TargetTable& targets() {
     static spiral::test::TargetTable table(
         "temporal-convergence-targets.md",
         {
-            {"cornell/E relative RMS/16 frames", KnownMiss{0.084, at + ": 0.0759"}},
-            {"cornell/E relative RMS/64 frames", KnownMiss{0.036, at + ": 0.0330"}},
+            {"cornell/E relative RMS/16 frames", KnownMiss{0.081, at + ": 0.0733"}},
+            {"cornell/E relative RMS/64 frames", KnownMiss{0.033, at + ": 0.0297"}},
             {"cornell/AO RMS / mean occlusion/16 frames", KnownMiss{0.074, at + ": 0.0673"}},
             // Warehouse at its 6 m auto radius (0.75 x its 8 m height);
             // its fine grain, on 113 flat pixels, moves with the
             // realisation (docs/radiosity-studies.md, "The auto radius of a
-            // low, wide interior").
-            {"warehouse/E relative RMS/16 frames", KnownMiss{0.35, at + ": 0.3195"}},
-            {"warehouse/E relative RMS/64 frames", KnownMiss{0.078, at + ": 0.0711"}},
-            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{7.0, at + ": 6.33"}},
-            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{2.6, at + ": 2.37"}},
+            // low, wide interior"). The prefiltered levels took the
+            // converged image's grain from 4.97% to 1.16% and the image's
+            // after 16 frames from 31.5% to 22.4%, so the ratios rose
+            // (docs/radiosity.md, "Prefiltered levels").
+            {"warehouse/E relative RMS/16 frames", KnownMiss{0.33, at + ": 0.2997"}},
+            {"warehouse/E relative RMS/64 frames", KnownMiss{0.072, at + ": 0.0650"}},
+            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{21.3, at + ": 19.35"}},
+            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{6.0, at + ": 5.42"}},
         });
     return table;
 }

@@ -229,10 +229,16 @@ struct RadiositySettings {
     int visibility_steps = 0;
     // Deepest MIP level of the depth pyramid and the prepared arrays a tap
     // reads, below the pyramid's own (SAO keeps reading the pyramid's): a
-    // level-m tap reads the one level-0 pixel of its 2^m block the rotated
-    // grid keeps, a lattice fixed in the image that frames do not average
-    // away (docs/radiosity.md, "The taps' MIP levels").
+    // level-m tap reads the position and normal of the one level-0 pixel of
+    // its 2^m block the rotated grid keeps (and, without `prefilter`, its
+    // radiance), a lattice fixed in the image that frames do not average away
+    // (docs/radiosity.md, "The taps' MIP levels").
     int max_mip_level = limits::max_pyramid_mip_level;
+    // 1: a coarse level's radiance is the mean over its block's pixels on the
+    // surface of the pixel the rotated grid keeps, so a tap reads the light
+    // of the area it stands for; 0: that one pixel's (docs/radiosity.md,
+    // "Prefiltered levels").
+    int prefilter = 1;
     // false: compose takes E and its confidence as 0, so the environment term
     // fills everywhere (the passes still run for their debug views).
     bool enabled = true;

@@ -1,8 +1,10 @@
 // Radiosity prepare (shaders/radiosity_prepare.comp): the outgoing radiance
 // and the normal of both G-buffer layers as rotated-grid MIP levels, built
 // like the depth pyramid and with as many levels, so that texel t of level m
-// of these and of the depth pyramid describe the same level-0 pixel. The
-// gather reads them instead of the G-buffer (docs/radiosity.md).
+// of these and of the depth pyramid describe the same level-0 pixel; with
+// `radiosity-prefilter` a coarse texel's radiance is the mean over its block's
+// pixels on that pixel's surface. The gather reads them instead of the
+// G-buffer (docs/radiosity.md).
 #include "passes/passes.hpp"
 #include "shader_shared.hpp"
 
@@ -27,6 +29,7 @@ constexpr GLuint emissive_binding = 2;
 constexpr GLuint motion_binding = 3;
 constexpr GLuint depth_binding = 4;
 constexpr GLuint direct_light_binding = 7;
+constexpr GLuint depth_pyramid_binding = 5;  // the levels above the base: the sources' depths
 constexpr GLuint previous_layer0_binding = 15;
 constexpr GLuint previous_layer1_binding = 16;
 constexpr GLuint history_key_layer0_binding = 19;
@@ -35,6 +38,7 @@ constexpr GLuint radiance_source_image = 0;
 constexpr GLuint radiance_destination_image = 1;
 constexpr GLuint normal_source_image = 2;
 constexpr GLuint normal_destination_image = 3;
+constexpr GLint source_level_location = 0;  // the reduction's `source_level`
 
 int level_extent(int extent, int level) {
     return std::max(1, extent >> level);
@@ -65,7 +69,8 @@ public:
                           {emissive_binding, "gbuffer.emissive"},
                           {motion_binding, "gbuffer.motion"},
                           {depth_binding, "gbuffer.depth"},
-                          {direct_light_binding, "direct_light.radiance"}},
+                          {direct_light_binding, "direct_light.radiance"},
+                          {depth_pyramid_binding, "depth_pyramid"}},
                 .writes = {"radiosity_prepare.radiance", "radiosity_prepare.normal"}};
     }
 
@@ -87,8 +92,8 @@ public:
         glUseProgram(base);
         parameters_.bind({.boost = settings.boost,
                           .rho_prop = settings.rho_prop,
-                          .unused0 = 0.0f,
-                          .unused1 = 0.0f});
+                          .prefilter = settings.prefilter ? 1.0f : 0.0f,
+                          .unused0 = 0.0f});
         // Last frame's filtered E and its keys (radiosity_pass.cpp owns them).
         glBindTextureUnit(previous_layer0_binding, frame.history("radiosity-layer0").previous());
         glBindTextureUnit(previous_layer1_binding, frame.history("radiosity-layer1").previous());
@@ -104,6 +109,7 @@ public:
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             bind_level(level - 1, radiance_source_image, normal_source_image, GL_READ_ONLY);
             bind_level(level, radiance_destination_image, normal_destination_image, GL_WRITE_ONLY);
+            glUniform1i(source_level_location, level - 1);
             dispatch_over(level_extent(width_, level), level_extent(height_, level));
         }
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
