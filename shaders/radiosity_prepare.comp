@@ -15,7 +15,9 @@
 // normal and depth of one and the same level-0 pixel, the texel's
 // representative. Its radiance is, with `prefilter` on (the default), the
 // mean over the block's texels that lie on the representative's surface,
-// each weighted by the level-0 pixels it stands for (radiance.a): a coarse
+// each weighted by the share of its block's level-0 pixels it stands for
+// (radiance.a, 1 at level 0; a share, not a count, so that it stays within
+// a half float at every level a 16384-pixel image has): a coarse
 // tap then reads the light of the area it stands for, not one pixel of a
 // lattice fixed in the image that the frames never average away. "On the
 // surface" is a normal within about 25 degrees (cosine 0.9) and a position
@@ -90,9 +92,9 @@ vec3 source_position(ivec2 at, float depth) {
   return camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
 }
 
-// Radiance (rgb) and weight (a: level-0 pixels it stands for) of texel
-// `texel` of the next level from its 2x2 block at the source level, whose
-// texel `chosen` is the representative.
+// Radiance (rgb) and weight (a: the share of its block's level-0 pixels it
+// stands for) of texel `texel` of the next level from its 2x2 block at the
+// source level, whose texel `chosen` is the representative.
 vec4 reduced_radiance(ivec2 texel, ivec2 chosen, int layer) {
   vec4 kept = imageLoad(radiance_source, ivec3(chosen, layer));
   if (prepare.prefilter == 0.0 || kept.a <= 0.0) return kept;
@@ -112,7 +114,7 @@ vec4 reduced_radiance(ivec2 texel, ivec2 chosen, int layer) {
   }
   // The representative is one of the four (clamped at an odd edge, it is
   // the block's own edge texel) and passes with d = 0, so sum.a > 0.
-  return vec4(sum.rgb / sum.a, sum.a);
+  return vec4(sum.rgb / sum.a, 0.25 * sum.a);
 }
 #endif
 

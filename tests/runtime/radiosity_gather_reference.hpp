@@ -86,7 +86,8 @@ inline int mip_levels(const RenderSettings& settings, int width, int height) {
 }
 
 // The radiance a tap reads at each MIP level of one layer: rgb and, in the
-// fourth channel, the level-0 pixels it stands for (0: no surface). Level 0
+// fourth channel, the share of its block's level-0 pixels it stands for (0:
+// no surface). Level 0
 // is direct + emissive (layer 0 only). With the prefilter, texel t of level
 // m + 1 is the weighted mean of the texels of its 2x2 block at level m that
 // lie on the surface of the block's representative r = 2t + corner(t)
@@ -148,7 +149,7 @@ inline std::vector<FloatImage> radiance_levels(const GatherInputs& inputs, int l
                             continue;
                         sum += glm::vec4(glm::vec3(radiance) * radiance.a, radiance.a);
                     }
-                    out = glm::vec4(glm::vec3(sum) / sum.a, sum.a);
+                    out = glm::vec4(glm::vec3(sum) / sum.a, 0.25f * sum.a);
                 }
                 const std::size_t i = 4 * (std::size_t(y) * w + x);
                 for (int k = 0; k < 4; ++k) next.pixels[i + k] = out[k];

@@ -189,6 +189,47 @@ TEST_CASE("radiosity: with the visibility test the gather matches its CPU evalua
     }
 }
 
+TEST_CASE("radiosity: the prefiltered levels stay finite down to the deepest level",
+          "[radiosity]") {
+    // 1024x576 with the pyramid's deepest level allowed builds levels 0 to
+    // 10, and a glowing plane filling the view keeps every pixel of every
+    // block.
+    // Each level's weight is a share of its block (at most 1), so it stays
+    // within a half float; a count of level-0 pixels would reach 65536 at
+    // level 8, past the largest half float: infinite where the conversion
+    // rounds to nearest, as GPUs do, which turns the means into NaN.
+    // (llvmpipe converts toward zero and saturates at 65504, so on it this
+    // check would pass with counts too.)
+    HeadlessContext context;
+    const ShaderLoader loader = ShaderLoader::from_build_configuration();
+    Scene scene = camera_facing_plane(5.0f);
+    for (Material& material : scene.materials) material.emissive = glm::vec3(1.0f);
+    RenderSettings settings = small_settings(1024, 576);
+    settings.depth_pyramid.max_mip_level = limits::max_pyramid_mip_level;
+    const int levels = mip_levels(settings, settings.width, settings.height);
+    REQUIRE(levels >= 10);
+    Renderer renderer(scene, settings, loader);
+    renderer.render(scene.default_camera);
+    const auto finite = [](const FloatImage& image) {
+        return std::all_of(image.pixels.begin(), image.pixels.end(),
+                           [](float v) { return std::isfinite(v); });
+    };
+    for (int layer = 0; layer < 2; ++layer) {
+        for (int level = 0; level < levels; ++level) {
+            const FloatImage radiance = renderer.read_pass_output(
+                fmt::format("radiosity_prepare-radiance-layer{}-level{}", layer, level));
+            INFO("layer " << layer << ", level " << level);
+            CHECK(finite(radiance));
+        }
+        const FloatImage raw =
+            renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer));
+        CHECK(finite(raw));
+    }
+    // The deepest level holds light, so the check above reads real means.
+    CHECK(max_value(renderer.read_pass_output(
+              fmt::format("radiosity_prepare-radiance-layer0-level{}", levels - 1))) > 0.0f);
+}
+
 TEST_CASE("radiosity: black albedo everywhere gives E exactly 0", "[radiosity]") {
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
