@@ -9,8 +9,10 @@
 // last frame's bounce, boost and emissive), n_Y its normal and Y is rebuilt
 // from the depth pyramid. Tap i reads MIP level
 // m_i = clamp(floor(log2(alpha_i R / q)), 0, max) of all three, as SAO does:
-// the rotated-grid texel is one level-0 pixel, and Y is rebuilt at that
-// pixel's centre.
+// the rotated-grid texel's depth and normal are one level-0 pixel's, and Y is
+// rebuilt at that pixel's centre; its B is by default the mean over that
+// pixel's surface within the texel's block (docs/radiosity.md, "Prefiltered
+// levels").
 //
 // DEEPGI_RADIOSITY_METHOD_AREA estimates the reference's one-bounce
 // irradiance (reference.hpp)
