@@ -68,13 +68,16 @@ inline glm::vec3 position_at(const GatherInputs& inputs, int x, int y, float dep
 // The level-0 pixel whose values texel (x, y) of MIP level `level` holds in
 // the rotated-grid chain: each level takes texel 2t + ((t.y & 1) ^ 1,
 // (t.x & 1) ^ 1) of the level above, clamped to its size (docs/design.md, section 5.5).
+// One step of that chain: the texel of a level of size (w, h) that texel t
+// of the level below it keeps.
+inline glm::ivec2 rotated_grid_kept(glm::ivec2 t, int w, int h) {
+    return glm::min(2 * t + glm::ivec2((t.y & 1) ^ 1, (t.x & 1) ^ 1), glm::ivec2(w - 1, h - 1));
+}
+
 inline glm::ivec2 rotated_grid_source(glm::ivec2 texel, int level, int width, int height) {
-    for (int l = level; l > 0; --l) {
-        const glm::ivec2 corner((texel.y & 1) ^ 1, (texel.x & 1) ^ 1);
-        const int w = std::max(1, width >> (l - 1));
-        const int h = std::max(1, height >> (l - 1));
-        texel = glm::min(2 * texel + corner, glm::ivec2(w - 1, h - 1));
-    }
+    for (int l = level; l > 0; --l)
+        texel =
+            rotated_grid_kept(texel, std::max(1, width >> (l - 1)), std::max(1, height >> (l - 1)));
     return texel;
 }
 
@@ -85,10 +88,16 @@ inline int mip_levels(const RenderSettings& settings, int width, int height) {
     return std::min(settings.depth_pyramid.max_mip_level, deepest) + 1;
 }
 
+// The deepest level the radiosity's taps read: its own cap
+// (radiosity-max-mip) within the levels built.
+inline int radiosity_deepest_level(const RenderSettings& settings, int width, int height) {
+    return std::min(mip_levels(settings, width, height) - 1, settings.radiosity.max_mip_level);
+}
+
 // The radiance a tap reads at each MIP level of one layer: rgb and, in the
 // fourth channel, the share of its block's level-0 pixels it stands for (0:
-// no surface). Level 0
-// is direct + emissive (layer 0 only). With the prefilter, texel t of level
+// no surface). Level 0 is direct + emissive (layer 0 only). With the
+// prefilter, texel t of level
 // m + 1 is the weighted mean of the texels of its 2x2 block at level m that
 // lie on the surface of the block's representative r = 2t + corner(t)
 // (clamped): normal n with n . n_r >= 0.9 and position P with |n_r . (P -
@@ -127,8 +136,7 @@ inline std::vector<FloatImage> radiance_levels(const GatherInputs& inputs, int l
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
                 const glm::ivec2 t(x, y);
-                const glm::ivec2 chosen = glm::min(2 * t + glm::ivec2((y & 1) ^ 1, (x & 1) ^ 1),
-                                                   glm::ivec2(source.width - 1, source.height - 1));
+                const glm::ivec2 chosen = rotated_grid_kept(t, source.width, source.height);
                 const auto value = [&](glm::ivec2 at) {
                     return glm::vec4(source.at(at.x, at.y, 0), source.at(at.x, at.y, 1),
                                      source.at(at.x, at.y, 2), source.at(at.x, at.y, 3));
@@ -181,9 +189,7 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
     const RadiositySettings& settings = render_settings.radiosity;
     const int width = inputs.depth[0].width;
     const int height = inputs.depth[0].height;
-    // The radiosity's own cap (radiosity-max-mip) within the levels built.
-    const int deepest =
-        std::min(mip_levels(render_settings, width, height) - 1, settings.max_mip_level);
+    const int deepest = radiosity_deepest_level(render_settings, width, height);
     FloatImage irradiance{width, height, 3, std::vector<float>(std::size_t(width) * height * 3)};
     FloatImage confidence{width, height, 1, std::vector<float>(std::size_t(width) * height)};
     const float radius_squared = settings.radius * settings.radius;
@@ -273,8 +279,7 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
 // from the level below, and llvmpipe converts toward zero, so the roundings
 // add; the CPU's float means have none.
 inline float gather_tolerance(const RenderSettings& settings) {
-    const int deepest = std::min(mip_levels(settings, settings.width, settings.height) - 1,
-                                 settings.radiosity.max_mip_level);
+    const int deepest = radiosity_deepest_level(settings, settings.width, settings.height);
     return 1e-3f +
            (settings.radiosity.prefilter != 0 ? float(deepest) * std::ldexp(1.0f, -11) : 0.0f);
 }

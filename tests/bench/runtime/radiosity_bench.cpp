@@ -111,9 +111,9 @@ int main(int argc, char** argv) {
                 const double now_all = now_gi + now.at("radiosity_prepare");
                 const double before_all = before_gi + before.at("radiosity_prepare");
                 baseline_rows += fmt::format(
-                    "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} "
-                    "| "
-                    "{:.1f} | {:.1f} | {:.2f} |\n",
+                    "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} "
+                    "| {:.1f} | {:.1f} | {:.2f} | {:.2f} "
+                    "| {:.1f} | {:.1f} | {:.2f} |\n",
                     name, before.at("radiosity"), now.at("radiosity"),
                     now.at("radiosity") / before.at("radiosity"), now_gi / before_gi,
                     before.at("radiosity_prepare"), now.at("radiosity_prepare"),
