@@ -122,7 +122,8 @@ void errors(const Images& image, const Images& converged, const FloatImage& dept
 
 StillConvergence measure_still_convergence(const Scene& scene, const RenderSettings& settings,
                                            const std::vector<int>& frame_counts, int converged_taps,
-                                           int converged_frames, const StillObserver& observer) {
+                                           int converged_frames, const StillObserver& observer,
+                                           const std::filesystem::path& shaders) {
     const int w = settings.width, h = settings.height;
     StillConvergence result;
     result.pixels = std::size_t(w) * h;
@@ -138,7 +139,12 @@ StillConvergence measure_still_convergence(const Scene& scene, const RenderSetti
                          {fmt::format("converged image of the still-camera convergence "
                                       "measurement, {} taps",
                                       converged_taps)}));
-        Renderer dense(scene, settings, test::loader_with_override(folder.path()));
+        // The tap header's folder first: it holds that one file, which must
+        // win over the build's (and over a copy in `shaders`).
+        std::vector<std::filesystem::path> dirs =
+            ShaderLoader::from_build_configuration(shaders).include_dirs();
+        dirs.insert(dirs.begin(), folder.path());
+        Renderer dense(scene, settings, ShaderLoader(dirs));
         for (int i = 0; i < converged_frames; ++i) dense.render(scene.default_camera);
         converged = read_images(dense, w, h);
         if (observer.converged_renderer) observer.converged_renderer(dense);
@@ -152,7 +158,7 @@ StillConvergence measure_still_convergence(const Scene& scene, const RenderSetti
     result.converged_e_grain = fine_grain(converged.e, flat, false);
     result.converged_ao_grain = fine_grain(converged.ao, flat, true);
 
-    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration());
+    Renderer renderer(scene, settings, ShaderLoader::from_build_configuration(shaders));
     int rendered = 0;
     for (int n : frame_counts) {
         while (rendered < n) {

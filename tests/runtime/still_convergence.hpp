@@ -25,6 +25,7 @@
 #include "deepgi/settings.hpp"
 
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -67,11 +68,16 @@ struct StillObserver {
 
 // Needs a current GL context. `frame_counts` must be increasing and >= 1;
 // the renderers are the build's (plus the converged image's tap header).
+// `shaders`, when not empty, is searched first by both renderers, as
+// `deepgi --shaders` searches it: a folder of edited copies, so that a
+// variant is measured against its own converged image without editing the
+// source tree.
 StillConvergence measure_still_convergence(const Scene& scene, const RenderSettings& settings,
                                            const std::vector<int>& frame_counts,
                                            int converged_taps = default_converged_taps,
                                            int converged_frames = default_converged_frames,
-                                           const StillObserver& observer = {});
+                                           const StillObserver& observer = {},
+                                           const std::filesystem::path& shaders = {});
 
 // The viewport part of an internal-size image (the guard band cut off), or
 // the image itself when it already has the viewport's size.

@@ -26,6 +26,7 @@ for bench in temporal_convergence sao_bench radiosity_bench; do
   bad $bench "--blur-extent must be" --scenes cornell --set blur-extent=-1
   bad $bench "--size" --scenes cornell --size 0x0
 done
+bad temporal_convergence "--shaders $scratch/none: not a folder" --scenes cornell --shaders "$scratch/none"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failures"

@@ -7,7 +7,8 @@
 // shared with the ctest that checks the targets.
 // --maps DIR writes where the AO error sits (docs/deep-sao-studies.md, "How fast
 // the march converges") and the E images that scripts/e_error_where.py reads;
-// --check-running-mean checks that no history was lost.
+// --check-running-mean checks that no history was lost; --shaders DIR measures
+// a folder of edited shader copies, as deepgi --shaders renders one.
 #include "bench_harness.hpp"
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
@@ -23,6 +24,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace {
@@ -116,12 +118,16 @@ int main(int argc, char** argv) {
     app.add_option("--temporal-offset", temporal_offset,
                    "first point of the frame sequence (the renderer's temporal-offset setting)");
     std::string maps;
+    std::string shaders;
     bool check_running_mean = false;
     bool library_lengths = false;
     app.add_option("--maps", maps,
                    "folder for AO error maps (|AO - C| / mean occlusion, white at 0.5), the "
                    "blurred, raw, unblurred (filtered) and converged AO, the blurred, unblurred "
                    "and converged E, depth and normals as PFM");
+    app.add_option("--shaders", shaders,
+                   "folder searched for shader files before the build's (edited copies), for both "
+                   "the measured renderer and the converged image");
     app.add_flag("--check-running-mean", check_running_mean,
                  "check that the filtered AO is the mean of the raw frames (a readback a frame)");
     app.add_flag("--library-lengths", library_lengths,
@@ -134,6 +140,9 @@ int main(int argc, char** argv) {
             if (n < 1) throw deepgi::InputError("--frames-list: counts must be >= 1");
         if (converged_frames < 1) throw deepgi::InputError("--converged-frames must be >= 1");
         if (converged_taps < 1) throw deepgi::InputError("--converged-taps must be >= 1");
+        if (std::error_code error;
+            !shaders.empty() && !std::filesystem::is_directory(shaders, error))
+            throw deepgi::InputError(fmt::format("--shaders {}: not a folder", shaders));
         // --set values go on top of the lengths, so an explicit length wins.
         deepgi::RenderSettings settings = deepgi::bench::settings_for(
             options, library_lengths ? deepgi::RenderSettings{} : deepgi::with_auto_lengths({}));
@@ -199,15 +208,21 @@ int main(int argc, char** argv) {
                 };
             const deepgi::convergence::StillConvergence run =
                 deepgi::convergence::measure_still_convergence(
-                    scene, settings, counts, converged_taps, converged_frames, observer);
+                    scene, settings, counts, converged_taps, converged_frames, observer, shaders);
+            // A converged image with no grain at all (a flat test shader) has
+            // no ratio: "-" rather than nan.
+            const auto ratio = [](double grain, double converged) {
+                return converged > 0.0 ? fmt::format("{:.2f}", grain / converged)
+                                       : std::string("-");
+            };
             for (const deepgi::convergence::StillFigures& row : run.rows) {
                 fmt::print(
-                    "| {} | {} | {:.2f}% | {:.2f}% | {:.2f} ({:.2f}% / {:.2f}%) | {:.2f}% | "
-                    "{:.2f} ({:.2f}% / {:.2f}%) |\n",
+                    "| {} | {} | {:.2f}% | {:.2f}% | {} ({:.2f}% / {:.2f}%) | {:.2f}% | "
+                    "{} ({:.2f}% / {:.2f}%) |\n",
                     name, row.frames, 100.0 * row.e_rms, 100.0 * row.e_mae,
-                    row.e_grain / run.converged_e_grain, 100.0 * row.e_grain,
+                    ratio(row.e_grain, run.converged_e_grain), 100.0 * row.e_grain,
                     100.0 * run.converged_e_grain, 100.0 * row.ao_rms,
-                    row.ao_grain / run.converged_ao_grain, 100.0 * row.ao_grain,
+                    ratio(row.ao_grain, run.converged_ao_grain), 100.0 * row.ao_grain,
                     100.0 * run.converged_ao_grain);
             }
             fmt::print("<!-- {}: {} flat pixels of {} -->\n", name, run.flat_pixels, run.pixels);
@@ -217,10 +232,12 @@ int main(int argc, char** argv) {
                 fmt::print("<!-- {}: {} -->\n", name, line);
         }
         fmt::print(
-            "\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{} | lengths {}{}\n",
+            "\nconverged: {} radiosity taps, {} still frames; device: {} | {}x{} | lengths "
+            "{}{}{}\n",
             converged_taps, converged_frames, deepgi::query_context_info().renderer, options.width,
             options.height, library_lengths ? "the library's" : "auto",
-            deepgi::bench::set_settings_note(options));
+            deepgi::bench::set_settings_note(options),
+            shaders.empty() ? "" : fmt::format(" | shaders first from {}", shaders));
         return 0;
     });
 }
