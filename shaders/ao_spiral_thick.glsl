@@ -26,8 +26,8 @@
 // directions: a bit counts once, with the reference's falloff
 // f(d) = 1 - d^2 / r^2 at the tap's distance d (the segment's nearest point
 // to X), as the reference's rays count their first hit. Bits no tap covers
-// are open. A sector no tap on the buffer fell into is unknown rather than
-// open: the estimate is the mean over the sectors seen.
+// are open. A sector no tap's layer-0 surface fell into is unknown rather
+// than open: the estimate is the mean over the sectors seen.
 
 #include "ao_thick_sectors.h"
 
@@ -120,11 +120,11 @@ struct ThickState {
 
 // One layer's solid of one tap, from its front depth to its back face
 // (linear, 0 = none: sao.thickness deep), with its surface's encoded normal,
-// into the hemisphere. A function called once per layer, not a loop over
+// into the hemisphere; `informs`: layer 0's, whose sector becomes seen. A function called once per layer, not a loop over
 // the layers: llvmpipe runs a loop over the layers as a loop, each select on
 // the layer at run time.
 void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float front, float back_face,
-                     vec2 encoded_normal) {
+                     vec2 encoded_normal, bool informs) {
   if (front <= 0.0) return;
   float back = back_face > 0.0 ? max(back_face, front) : front + sao.thickness;
   vec3 front_point = tap.ray * front;
@@ -134,7 +134,12 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float 
 #if AO_THICK_SECTORS == 2
   // atan(y, x) in (-pi, pi] falls in the upper half exactly where y >= 0.
   bool upper = dot(f, px.bitangent) >= 0.0;
-  state.informed |= upper ? 2u : 1u;
+  // Layer 0 decides which sectors are seen (informs); a layer-1 solid, behind
+  // its tap's layer-0 surface, counts only in a sector already seen. Letting
+  // it make a sector seen added that sector's open bits to the mean, and two
+  // layers came out brighter than one (docs/deep-sao.md, "The thick spiral").
+  if (informs) state.informed |= upper ? 2u : 1u;
+  else if ((state.informed & (upper ? 2u : 1u)) == 0u) return;
 #else
   // A tap straight above X (f along the normal) has no azimuth; GLSL
   // leaves atan(0, 0) undefined, so it is taken as 0, as in the mirror.
@@ -142,7 +147,8 @@ void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float 
   float azimuth = along_b == 0.0 && along_t == 0.0 ? 0.0 : atan(along_b, along_t);
   int sector = clamp(int(floor((azimuth * (0.5 / pi) + 0.5) * float(AO_THICK_SECTORS))), 0,
                      AO_THICK_SECTORS - 1);
-  state.informed |= 1u << uint(sector);
+  if (informs) state.informed |= 1u << uint(sector);
+  else if ((state.informed & (1u << uint(sector))) == 0u) return;
 #endif
   // The segment's nearest point to X gives the distance of the falloff.
   vec3 nearest = tap.ray * clamp(tap.nearest_depth, front, back) - px.position;
@@ -306,9 +312,9 @@ float spiral_thick_visibility(ivec2 pixel, vec3 position, vec3 normal, float rad
     // Both layers' encoded normals at the tap's source pixel in one fetch
     // (normal_pair.frag copies them from the G-buffer's two layers).
     vec4 tap_normals = texelFetch(normal_pair, tap.source, 0);
-    add_thick_solid(state, px, tap, tap_depths.r, tap_depths.b, tap_normals.xy);
+    add_thick_solid(state, px, tap, tap_depths.r, tap_depths.b, tap_normals.xy, true);
 #if AO_LAYERS > 1
-    add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw);
+    add_thick_solid(state, px, tap, tap_depths.g, tap_depths.a, tap_normals.zw, false);
 #endif
   }
   add_overhang(state, px, radius);

@@ -152,7 +152,8 @@ TapLookup look_up_tap(const spiral::codegen::Tap& tap, int x, int y, float c, fl
 // elevations between its ends at its azimuth; bands are unioned per azimuth
 // sector in bins of equal cosine-weighted measure (u = sin^2 of the
 // elevation), and a bin counts once, weighted by the falloff at the distance
-// of the first tap (in order of growing radius) that covers it. The
+// of the first tap (in order of growing radius) that covers it; a sector is
+// seen where a layer-0 surface falls into it. The
 // sector count grows with the tap count (shaders/ao_thick_sectors.h).
 constexpr int thick_bins = 32;
 constexpr int thick_max_sectors = 8;
@@ -221,7 +222,12 @@ float spiral_thick_visibility(int x, int y, glm::vec3 position, glm::vec3 normal
             const int sector =
                 std::clamp(int(std::floor((azimuth / 6.2831853f + 0.5f) * float(thick_sectors))), 0,
                            thick_sectors - 1);
-            seen[sector] = true;
+            // Layer 0 makes its sector seen; a layer-1 solid counts only in
+            // a sector already seen (ao_spiral_thick.glsl, `informs`).
+            if (layer == 0)
+                seen[sector] = true;
+            else if (!seen[sector])
+                continue;
             const glm::vec3 near_end = cell_end(std::max(tap.alpha - cell, 0.0f));
             const glm::vec3 far_end = cell_end(tap.alpha + cell);
             // Distance: the segment's point nearest to X.
