@@ -1,8 +1,10 @@
 // spiralgen: the command-line front end of the optimizer and the code generator.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <spiral/fileio.hpp>
 
 #include "../strict_numbers.hpp"
@@ -54,6 +56,23 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
+        // No known subcommand: name them all, and the word given instead if
+        // any, rather than CLI11's bare "A subcommand is required".
+        if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr &&
+            app.get_subcommands().empty()) {
+            std::vector<std::string> names;
+            for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+                names.push_back(command->get_name());
+            const std::vector<std::string> words = app.remaining();
+            if (!words.empty())
+                return fail(
+                    fmt::format("'{}' is not a subcommand; the subcommands are {} "
+                                "(spiralgen --help describes them)",
+                                words.front(), fmt::join(names, ", ")));
+            return fail(
+                fmt::format("a subcommand is required: {} (spiralgen --help describes them)",
+                            fmt::join(names, ", ")));
+        }
         return fail(spiral_apps::describe_parse_error(e));
     } catch (const std::exception& e) {
         return fail(e.what());

@@ -145,6 +145,19 @@ TEST_CASE("spiralgen: bad input gives one line on stderr and exit status 2", "[c
     CHECK(result.out.empty());
 }
 
+TEST_CASE("spiralgen: without a known subcommand it names every subcommand", "[cli][errors]") {
+    const auto none = spiralgen("");
+    CHECK(none.status == 2);
+    CHECK(none.err ==
+          "spiralgen: error: a subcommand is required: table, discrepancy, ties, header, blur "
+          "(spiralgen --help describes them)\n");
+    const auto unknown = spiralgen("frobnicate --n 3");
+    CHECK(unknown.status == 2);
+    CHECK(unknown.err ==
+          "spiralgen: error: 'frobnicate' is not a subcommand; the subcommands are table, "
+          "discrepancy, ties, header, blur (spiralgen --help describes them)\n");
+}
+
 TEST_CASE("spiralgen: --help works on every subcommand", "[cli]") {
     const std::string command = GENERATE(as<std::string>{}, "table", "discrepancy", "ties");
     const auto result = spiralgen(command + " --help");
