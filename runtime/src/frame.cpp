@@ -1,20 +1,20 @@
 // The renderer's frame: the list of passes in the order they run (one line
 // each in passes/pass_list.hpp), the per-frame constants, and the loop that
-// resizes, runs and dumps the passes.
+// resizes and runs the passes over a RendererState (renderer.cpp is the
+// Renderer around it).
 // Nothing here knows a pass's textures; passes meet in FrameResources.
 #include "deepgi/context.hpp"
 #include "deepgi/errors.hpp"
 #include "deepgi/renderer.hpp"
 #include "deepgi/settings.hpp"
 #include "gl/pass_timer.hpp"
-#include "gl/readback.hpp"
 #include "frame_resources.hpp"
 #include "pass.hpp"
 #include "passes/passes.hpp"
+#include "renderer_state.hpp"
 #include "shader_shared.hpp"
 
 #include <fmt/format.h>
-#include <spiral/fileio.hpp>
 
 #include <algorithm>
 #include <array>
@@ -33,7 +33,6 @@ using uint = std::uint32_t;
 using shader_shared::temporal_sequence_u_fixed;
 using shader_shared::temporal_sequence_v_fixed;
 
-namespace fs = std::filesystem;
 using shader_shared::FrameConstants;
 
 FrameLayout frame_layout(const RenderSettings& settings) {
@@ -68,29 +67,6 @@ const std::vector<PassFactory>& default_pass_list() {
     return passes;
 }
 
-struct RendererState {
-    Scene scene;
-    RenderSettings settings;  // as given: lengths may be auto_length
-    RenderSettings in_use;    // `auto` resolved for this scene: what the passes read
-    ShaderLoader loader;
-    SceneGpu scene_gpu;
-    gl::VertexArray empty_vertex_array;
-    gl::Buffer frame_constants;
-    std::vector<std::unique_ptr<Pass>> passes;
-    std::vector<PassDeclaration> declarations;  // per pass, checked for `settings`
-    FrameResources frame;
-    PassTimer timer{true};
-    std::optional<Camera> last_camera;   // converts dumped depth to metres
-    std::vector<std::string> gl_errors;  // from the KHR_debug callback (--gl-debug)
-    std::uint32_t temporal_frame = 0;    // frames since history was invalidated (wraps at 2^32)
-    // The last frame's statistics, read back on the first request after it.
-    mutable std::optional<FrameStatistics> statistics;
-
-    RendererState(const Scene& source, const RenderSettings& render_settings,
-                  const ShaderLoader& shader_loader)
-        : scene(source), settings(render_settings), loader(shader_loader) {}
-};
-
 namespace {
 
 void GLAPIENTRY collect_gl_error(GLenum, GLenum type, GLuint, GLenum, GLsizei,
@@ -99,6 +75,8 @@ void GLAPIENTRY collect_gl_error(GLenum, GLenum type, GLuint, GLenum, GLsizei,
     auto* errors = static_cast<std::vector<std::string>*>(const_cast<void*>(user));
     errors->emplace_back(message);
 }
+
+}  // namespace
 
 void install_gl_debug(RendererState& state, bool enabled) {
     if (enabled) {
@@ -110,6 +88,8 @@ void install_gl_debug(RendererState& state, bool enabled) {
     }
 }
 
+namespace {
+
 // With --gl-debug, turns the errors the callback collected into an exception.
 void throw_gl_errors(RendererState& state, std::string_view where) {
     if (state.gl_errors.empty()) return;
@@ -120,8 +100,8 @@ void throw_gl_errors(RendererState& state, std::string_view where) {
                                     count > 1 ? fmt::format(" (and {} more)", count - 1) : ""));
 }
 
-// Points the frame resources at the current settings and reallocates every
-// pass's render targets. Programs are untouched.
+}  // namespace
+
 void resize_passes(RendererState& state) {
     FrameResources& frame = state.frame;
     frame.settings = &state.in_use;
@@ -135,6 +115,8 @@ void resize_passes(RendererState& state) {
         throw_gl_errors(state, fmt::format("resizing pass '{}'", pass->name()));
     }
 }
+
+namespace {
 
 // This frame's point of the temporal sequence (shaders/temporal_sequence.h),
 // k frames after history was invalidated: (0, 0) on the first frame, then a
@@ -151,6 +133,10 @@ glm::vec4 temporal_sample(std::uint32_t k) {
     const std::uint32_t v = temporal_sequence_v_fixed(k);
     return {unit(temporal_sequence_u_fixed(k)), unit(v), unit(v + 0x80000000u) - 0.5f, 0.0f};
 }
+
+}  // namespace
+
+namespace {
 
 FrameConstants make_frame_constants(const RendererState& state, const Camera& camera,
                                     const Camera& previous, const Camera& next) {
@@ -217,13 +203,14 @@ FrameConstants make_frame_constants(const RendererState& state, const Camera& ca
     return constants;
 }
 
+}  // namespace
+
 bool wants_cpu_clock(TimingMode mode) {
     if (mode == TimingMode::cpu) return true;
     if (mode == TimingMode::gpu) return false;
     return query_context_info().is_software_renderer;
 }
 
-// One frame: the enabled passes in list order.
 void render_frame(RendererState& state, const Camera& camera, const Camera& next_camera,
                   CameraMotion motion) {
     FrameResources& frame = state.frame;
@@ -271,7 +258,6 @@ void render_frame(RendererState& state, const Camera& camera, const Camera& next
     ++state.temporal_frame;
 }
 
-// The values the enabled passes give each other (PassValue), by name.
 std::map<std::string, float, std::less<>> declared_values(
     const std::vector<PassDeclaration>& declarations) {
     std::map<std::string, float, std::less<>> values;
@@ -280,7 +266,6 @@ std::map<std::string, float, std::less<>> declared_values(
     return values;
 }
 
-// Every enabled pass's outputs, in pass order.
 std::vector<PassOutput> all_outputs(const RendererState& state) {
     std::vector<PassOutput> outputs;
     for (const auto& pass : state.passes) {
@@ -288,50 +273,6 @@ std::vector<PassOutput> all_outputs(const RendererState& state) {
         for (auto& output : pass->outputs(state.frame)) outputs.push_back(std::move(output));
     }
     return outputs;
-}
-
-}  // namespace
-
-Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader)
-    : Renderer(scene, settings, loader, default_pass_list()) {}
-
-Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const ShaderLoader& loader,
-                   const std::vector<PassFactory>& passes)
-    : state_(std::make_unique<RendererState>(scene, settings, loader)) {
-    validate(settings);
-    RendererState& state = *state_;
-    state.in_use = resolve_auto_lengths(settings, scene_scale(state.scene));
-    state.scene_gpu = upload_scene(state.scene);
-    state.empty_vertex_array = gl::create_vertex_array();
-    state.frame_constants = gl::create_buffer();
-    glNamedBufferStorage(state.frame_constants.get(), sizeof(FrameConstants), nullptr,
-                         GL_DYNAMIC_STORAGE_BIT);
-    state.timer = PassTimer(wants_cpu_clock(settings.timing));
-    install_gl_debug(state, settings.gl_debug);
-    try {
-        for (PassFactory make : passes) state.passes.push_back(make(state.loader, state.scene));
-        state.declarations = check_pass_declarations(state.passes, state.in_use);
-        state.frame.set_values(declared_values(state.declarations));
-        resize_passes(state);
-    } catch (...) {
-        // No destructor runs for a half-built renderer; the callback must not
-        // outlive the error list it writes to.
-        if (settings.gl_debug) install_gl_debug(state, false);
-        throw;
-    }
-    state.frame.invalidate_history("new scene");
-}
-
-Renderer::~Renderer() {
-    if (state_->settings.gl_debug) install_gl_debug(*state_, false);
-}
-
-void Renderer::render(const Camera& camera, CameraMotion motion) {
-    render_frame(*state_, camera, camera, motion);
-}
-
-void Renderer::render(const Camera& camera, const Camera& next_camera, CameraMotion motion) {
-    render_frame(*state_, camera, next_camera, motion);
 }
 
 Camera extrapolate_camera(const Camera& previous, const Camera& current) {
@@ -349,54 +290,6 @@ Camera extrapolate_camera(const Camera& previous, const Camera& current) {
     return next;
 }
 
-void Renderer::set_settings(const RenderSettings& settings) {
-    validate(settings);
-    RendererState& state = *state_;
-    // A new internal size (viewport or guard band) leaves no history to keep.
-    const bool resized = settings.width != state.settings.width ||
-                         settings.height != state.settings.height ||
-                         settings.guard_band_fraction != state.settings.guard_band_fraction;
-    bool reallocate = resized;
-    bool invalidate = resized;
-    std::string reason = fmt::format("resize to {}x{}, guard band {}", settings.width,
-                                     settings.height, settings.guard_band_fraction);
-    // Beyond that, each pass says what a change costs it; the rows that no
-    // pass of the list owns (the frame's own) count here.
-    auto count = [&](const SettingsChange& change) {
-        reallocate = reallocate || change.reallocate;
-        if (!change.drop_history.empty() && !invalidate) {
-            invalidate = true;
-            reason = change.drop_history;
-        }
-    };
-    count(rows_settings_change(state.settings, settings, [&](std::string_view owner) {
-        return std::none_of(state.passes.begin(), state.passes.end(),
-                            [&](const auto& pass) { return pass->name() == owner; });
-    }));
-    for (const auto& pass : state.passes) count(pass->settings_change(state.settings, settings));
-    const bool retime = settings.timing != state.settings.timing;
-    if (settings.gl_debug != state.settings.gl_debug) install_gl_debug(state, settings.gl_debug);
-    // Which passes run, and what they read, can change with any setting
-    // (the AO method decides whether the back faces are needed).
-    const RenderSettings in_use = resolve_auto_lengths(settings, scene_scale(state.scene));
-    std::vector<PassDeclaration> declarations = check_pass_declarations(state.passes, in_use);
-    state.settings = settings;
-    state.in_use = in_use;
-    state.declarations = std::move(declarations);
-    state.frame.set_values(declared_values(state.declarations));
-    if (reallocate) resize_passes(state);
-    if (invalidate) state.frame.invalidate_history(reason);
-    if (retime) state.timer = PassTimer(wants_cpu_clock(settings.timing));
-}
-
-const RenderSettings& Renderer::settings() const {
-    return state_->settings;
-}
-
-const RenderSettings& Renderer::settings_in_use() const {
-    return state_->in_use;
-}
-
 float scene_bounding_radius(const Scene& scene) {
     const float radius = 0.5f * glm::length(scene.bounds.max - scene.bounds.min);
     // An empty or degenerate scene still gets positive lengths.
@@ -408,114 +301,6 @@ SceneScale scene_scale(const Scene& scene) {
     const float smallest = std::min({size.x, size.y, size.z});
     return {.bounding_radius = scene_bounding_radius(scene),
             .smallest_extent = std::isfinite(smallest) ? std::max(smallest, 0.0f) : 0.0f};
-}
-
-void Renderer::set_key_light(const KeyLight& light) {
-    auto finite = [](glm::vec3 v) {
-        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-    };
-    if (!finite(light.position) || !finite(light.direction) || !finite(light.colour) ||
-        !std::isfinite(light.intensity) || !std::isfinite(light.outer_cone) ||
-        !std::isfinite(light.inner_cone) || !std::isfinite(light.range)) {
-        throw InputError("light: every value must be finite");
-    }
-    if (light.intensity < 0.0f || glm::any(glm::lessThan(light.colour, glm::vec3(0.0f))))
-        throw InputError("light: intensity and colour must be >= 0");
-    if (light.range < 0.0f) throw InputError("light: the range must be >= 0 (0: unlimited)");
-    if (glm::length(light.direction) < 1e-6f)
-        throw InputError("light: the direction must not be zero");
-    RendererState& state = *state_;
-    // Stored as given: the frame constants and the shadow projection
-    // normalise the direction themselves, and renormalising here could move
-    // the last bit of an already unit vector (and with it pixels).
-    // A changed light changes every lit radiance the temporal filters hold;
-    // they see it through the version (FrameResources::lighting_version).
-    if (!(state.scene.key_light == light)) ++state.frame.lighting_version;
-    state.scene.key_light = light;
-    state.frame.shadow = shadow_projection(state.scene, state.settings.shadow_map_size);
-}
-
-const FrameStatistics& Renderer::frame_statistics() const {
-    RendererState& state = *state_;
-    if (state.statistics) return *state.statistics;
-    FrameStatistics statistics;
-    statistics.exposure = state.settings.exposure == auto_length ? 1.0f : state.settings.exposure;
-    if (state.last_camera) {
-        // 2x1 RGBA32F (frame_statistics.comp): exposure, log-average, target,
-        // pixels; near and far of layer 0 and of layer 1.
-        std::array<float, 8> texels{};
-        glGetTextureSubImage(state.frame.texture("frame_statistics"), 0, 0, 0, 0, 2, 1, 1, GL_RGBA,
-                             GL_FLOAT, GLsizei(sizeof(texels)), texels.data());
-        statistics.exposure = texels[0];
-        statistics.log_average_luminance = texels[1];
-        statistics.auto_exposure_target = texels[2];
-        statistics.depth_ranges = {DepthRange{texels[4], texels[5]},
-                                   DepthRange{texels[6], texels[7]}};
-    }
-    state.statistics = statistics;
-    return *state.statistics;
-}
-
-float Renderer::exposure_in_use() const {
-    return frame_statistics().exposure;
-}
-
-std::array<DepthRange, 2> Renderer::depth_ranges() const {
-    return frame_statistics().depth_ranges;
-}
-
-const KeyLight& Renderer::key_light() const {
-    return state_->scene.key_light;
-}
-FrameLayout Renderer::layout() const {
-    return frame_layout(state_->settings);
-}
-const std::vector<PassTiming>& Renderer::last_timings() const {
-    return state_->timer.timings();
-}
-bool Renderer::timing_uses_cpu_clock() const {
-    return state_->timer.uses_cpu_clock();
-}
-bool Renderer::history_valid() const {
-    return state_->frame.history_valid();
-}
-const std::vector<std::string>& Renderer::history_log() const {
-    return state_->frame.history_log();
-}
-GLuint Renderer::output_texture() const {
-    return state_->frame.display.get();
-}
-
-std::vector<std::uint8_t> Renderer::read_output_rgba8() const {
-    return gl::read_rgba8(state_->frame.display.get(), 0, state_->settings.width,
-                          state_->settings.height);
-}
-
-std::vector<std::string> Renderer::pass_output_names() const {
-    std::vector<std::string> names;
-    for (const auto& output : all_outputs(*state_)) names.push_back(output.name);
-    return names;
-}
-
-FloatImage Renderer::read_pass_output(const std::string& name) const {
-    const float near_plane = state_->last_camera ? state_->last_camera->near_plane : 0.05f;
-    for (const auto& output : all_outputs(*state_)) {
-        if (output.name == name) return deepgi::read_pass_output(output, near_plane);
-    }
-    throw InputError(fmt::format("no pass output named '{}'", name));
-}
-
-void Renderer::dump_pass_outputs(const fs::path& directory) const {
-    // The whole set appears at once or not at all (a previous dump, holding
-    // only .pfm files, is replaced whole); a failure names the file and errno.
-    spiral::fileio::AtomicDirectory dump(directory, ".pfm");
-    const float near_plane = state_->last_camera ? state_->last_camera->near_plane : 0.05f;
-    for (const auto& output : all_outputs(*state_)) {
-        const std::vector<std::uint8_t> bytes =
-            encode_pfm(deepgi::read_pass_output(output, near_plane));
-        dump.write_file(output.name + ".pfm", bytes.data(), bytes.size());
-    }
-    dump.commit();
 }
 
 }  // namespace deepgi
