@@ -105,6 +105,11 @@ vec4 reduced_radiance(ivec2 texel, ivec2 chosen, int layer) {
   for (int j = 0; j < 4; ++j) {
     ivec2 at = 2 * texel + ivec2(j & 1, j >> 1);
     if (any(greaterThanEqual(at, size))) continue;
+    // The representative passes its own test (d = 0): its values are read.
+    if (at == chosen) {
+      sum += vec4(kept.rgb * kept.a, kept.a);
+      continue;
+    }
     vec4 radiance = imageLoad(radiance_source, ivec3(at, layer));
     if (radiance.a <= 0.0) continue;
     vec3 d = source_position(at, texelFetch(depth_pyramid, at, source_level)[layer]) - position;
@@ -113,7 +118,7 @@ vec4 reduced_radiance(ivec2 texel, ivec2 chosen, int layer) {
     sum += vec4(radiance.rgb * radiance.a, radiance.a);
   }
   // The representative is one of the four (clamped at an odd edge, it is
-  // the block's own edge texel) and passes with d = 0, so sum.a > 0.
+  // the block's own edge texel), so sum.a > 0.
   return vec4(sum.rgb / sum.a, 0.25 * sum.a);
 }
 #endif
