@@ -120,9 +120,9 @@ struct ThickState {
 
 // One layer's solid of one tap, from its front depth to its back face
 // (linear, 0 = none: sao.thickness deep), with its surface's encoded normal,
-// into the hemisphere; `informs`: layer 0's, whose sector becomes seen. A function called once per layer, not a loop over
-// the layers: llvmpipe runs a loop over the layers as a loop, each select on
-// the layer at run time.
+// into the hemisphere; `informs`: layer 0's, whose sector becomes seen. A
+// function called once per layer, not a loop over the layers: llvmpipe runs
+// a loop over the layers as a loop, each select on the layer at run time.
 void add_thick_solid(inout ThickState state, ThickPixel px, ThickTap tap, float front, float back_face,
                      vec2 encoded_normal, bool informs) {
   if (front <= 0.0) return;

@@ -65,15 +65,15 @@ inline glm::vec3 position_at(const GatherInputs& inputs, int x, int y, float dep
     return {ndc_x * inputs.ray_scale.x * depth, ndc_y * inputs.ray_scale.y * depth, -depth};
 }
 
-// The level-0 pixel whose values texel (x, y) of MIP level `level` holds in
-// the rotated-grid chain: each level takes texel 2t + ((t.y & 1) ^ 1,
-// (t.x & 1) ^ 1) of the level above, clamped to its size (docs/design.md, section 5.5).
-// One step of that chain: the texel of a level of size (w, h) that texel t
-// of the level below it keeps.
+// One step of the rotated-grid chain: the texel of a level of size (w, h)
+// that texel t of the next level keeps, 2t + ((t.y & 1) ^ 1, (t.x & 1) ^ 1)
+// clamped to its size (docs/design.md, section 5.5).
 inline glm::ivec2 rotated_grid_kept(glm::ivec2 t, int w, int h) {
     return glm::min(2 * t + glm::ivec2((t.y & 1) ^ 1, (t.x & 1) ^ 1), glm::ivec2(w - 1, h - 1));
 }
 
+// The level-0 pixel whose values texel (x, y) of MIP level `level` holds:
+// the chain's steps from `level` up to 0.
 inline glm::ivec2 rotated_grid_source(glm::ivec2 texel, int level, int width, int height) {
     for (int l = level; l > 0; --l)
         texel =

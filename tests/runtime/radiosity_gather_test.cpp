@@ -212,20 +212,16 @@ TEST_CASE("radiosity: the prefiltered levels stay finite down to the deepest lev
     REQUIRE(levels >= 10);
     Renderer renderer(scene, settings, loader);
     renderer.render(scene.default_camera);
-    const auto finite = [](const FloatImage& image) {
-        return std::all_of(image.pixels.begin(), image.pixels.end(),
-                           [](float v) { return std::isfinite(v); });
-    };
     for (int layer = 0; layer < 2; ++layer) {
         for (int level = 0; level < levels; ++level) {
             const FloatImage radiance = renderer.read_pass_output(
                 fmt::format("radiosity_prepare-radiance-layer{}-level{}", layer, level));
             INFO("layer " << layer << ", level " << level);
-            CHECK(finite(radiance));
+            CHECK(all_finite(radiance));
         }
         const FloatImage raw =
             renderer.read_pass_output(fmt::format("radiosity-raw-layer{}", layer));
-        CHECK(finite(raw));
+        CHECK(all_finite(raw));
     }
     // The deepest level holds light, so the check above reads real means.
     CHECK(max_value(renderer.read_pass_output(
