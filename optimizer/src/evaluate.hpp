@@ -31,8 +31,16 @@ std::int64_t band_excess(const std::vector<std::int64_t>& angles,
                          const std::vector<std::int32_t>& taps_at, std::int64_t taps,
                          std::int64_t open_width, std::int64_t count_unit, std::int64_t circle);
 
-// evaluate_bands runs eight bands in 32-bit lanes when 4 n^2 m is at most this.
+// evaluate() and evaluate_bands run eight bands in 32-bit lanes when 4 n^2 m
+// is at most this.
 inline constexpr std::int64_t kBandLaneLimit = std::int64_t{1} << 28;
+
+struct SpiralLattice;
+
+// evaluate()'s value-only sweep, eight bands per pass (lanes.cpp); the same
+// contract, for a lattice with 4 n^2 m <= kBandLaneLimit.
+std::int64_t evaluate_in_lanes(const SpiralLattice& lattice, std::int64_t bound,
+                               std::int64_t* exceeding_band, std::int64_t known_lower_bound);
 
 struct BandScratch {
     std::vector<std::int64_t> sorted, angles;
@@ -49,7 +57,7 @@ std::int64_t evaluate_band(int n, std::int64_t tau, std::int64_t m, std::int64_t
 // Up to eight bands of one candidate at once: excess[j] = evaluate_band(n,
 // tau, m, taps[j]) for j < count (1 <= count <= 8), in one pass over the
 // taps of the largest band sorted by angle, each band in its own 32-bit
-// vector lane (fast.cpp proves the lane values exact). When 4 n^2 m > 2^28
+// vector lane (lanes.cpp proves the lane values exact). When 4 n^2 m > 2^28
 // the bands are evaluated one by one.
 void evaluate_bands(int n, std::int64_t tau, std::int64_t m, const std::int64_t* taps, int count,
                     BandScratch& scratch, std::int64_t* excess);
