@@ -12,6 +12,7 @@ add_executable(deepgi_sao_tests
   sao_thick_test.cpp
   depth_pyramid_test.cpp
   blur_test.cpp
+  blur_reference.cpp
   pixel_rotation_test.cpp
   temporal_sequence_test.cpp
   antialias_test.cpp
