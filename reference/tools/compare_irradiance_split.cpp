@@ -27,12 +27,11 @@ int run(int argc, char** argv) {
         "one-bounce irradiance its layers could hold (docs/reference.md)",
         "deepgi_compare_irradiance_split"};
     deepgi_tools::use_tool_layout(app);
-    std::filesystem::path dump, reference;
-    int guard = 0, layers = 2;
+    deepgi_tools::DumpAndReference folders;
+    int layers = 2;
     std::string label;
-    deepgi_tools::add_dump_dir(app, dump);
-    deepgi_tools::add_reference_dir(app, reference);
-    deepgi_tools::add_guard_pixels(app, guard);
+    deepgi_tools::add_dump_and_reference(app, folders);
+    const auto& [dump, reference, guard] = folders;
     app.add_option("LAYERS", layers, "The G-buffer layers the dump's gather read (1 or 2)")
         ->required()
         ->check(CLI::Range(1, 2));

@@ -38,11 +38,9 @@ int run(int argc, char** argv) {
     CLI::App app{"Deep SAO of a dump against the ray-traced ambient visibility (docs/reference.md)",
                  "deepgi_compare_reference"};
     deepgi_tools::use_tool_layout(app);
-    std::filesystem::path dump, reference;
-    int guard = 0;
-    deepgi_tools::add_dump_dir(app, dump);
-    deepgi_tools::add_reference_dir(app, reference);
-    deepgi_tools::add_guard_pixels(app, guard);
+    deepgi_tools::DumpAndReference folders;
+    deepgi_tools::add_dump_and_reference(app, folders);
+    const auto& [dump, reference, guard] = folders;
     if (const auto status = deepgi_tools::parse(app, argc, argv)) return *status;
     const auto raster = deepgi::read_pfm(dump / "gbuffer-depth-layer0.pfm");
     const auto traced = deepgi::read_pfm(reference / "reference-depth-layer0.pfm");

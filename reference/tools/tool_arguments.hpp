@@ -70,6 +70,20 @@ inline CLI::Option* add_guard_pixels(CLI::App& app, int& guard) {
         ->check(CLI::NonNegativeNumber);
 }
 
+// The three positional arguments of every comparison tool: the dump, the
+// reference of the same scene and size, and the guard band both carry.
+struct DumpAndReference {
+    std::filesystem::path dump;
+    std::filesystem::path reference;
+    int guard = 0;
+};
+
+inline void add_dump_and_reference(CLI::App& app, DumpAndReference& folders) {
+    add_dump_dir(app, folders.dump);
+    add_reference_dir(app, folders.reference);
+    add_guard_pixels(app, folders.guard);
+}
+
 inline CLI::Option* add_scene(CLI::App& app, std::string& scene) {
     return app.add_option("SCENE", scene, "The scene of both folders, as deepgi --scene names it")
         ->required();
