@@ -135,6 +135,11 @@ gl::Program build_fullscreen_program(const ShaderLoader& loader, const std::stri
 void begin_fullscreen(GLuint framebuffer, int width, int height);
 // Draws the fullscreen triangle into the bound framebuffer.
 void draw_fullscreen_triangle(GLuint empty_vertex_array);
+// Draws `program`'s fullscreen triangle into the frame's display image (the
+// viewport-sized RGBA8 the last pass writes), the whole of it.
+void draw_into_display(FrameResources& frame, const gl::Program& program);
+// The display image as the output `name` of --dump (8-bit RGB).
+PassOutput display_output(const FrameResources& frame, std::string name);
 // A framebuffer whose colour attachment 0 is level 0 of `texture` (2-D).
 gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what);
 // Names a texture for captures: "<pass> <what>".

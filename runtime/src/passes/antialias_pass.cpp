@@ -53,11 +53,7 @@ public:
     }
 
     std::vector<PassOutput> outputs(const FrameResources& frame) const override {
-        return {{.name = "antialias-colour",
-                 .texture = frame.display.get(),
-                 .width = frame.settings->width,
-                 .height = frame.settings->height,
-                 .decode = OutputDecode::unorm_rgb}};
+        return {display_output(frame, "antialias-colour")};
     }
 
 private:

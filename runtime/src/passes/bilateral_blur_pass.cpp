@@ -181,7 +181,10 @@ void run_bilateral_blur(const BilateralBlur& blur, std::span<const GLuint> sourc
                      .normal_power = blur.parameters.normal_power,
                      .plane_tolerance = blur.parameters.plane_tolerance,
                      .world_extent = blur.world_extent,
-                     .second_extent_start = blur.second_extent_start});
+                     .second_extent_start = blur.second_extent_start,
+                     .unused0 = 0.0f,
+                     .unused1 = 0.0f,
+                     .unused2 = 0.0f});
     glBindTextureUnit(key_binding, blur.key.get());
 
     for (int i = 0; i < blur.source_count; ++i)

@@ -60,20 +60,13 @@ public:
     }
 
     void run(FrameResources& frame) override {
-        begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
-                         frame.settings->height);
         // Whether the reflection pass ran is the frame's decision
         // (FrameConstants.reflection_term), which the shader reads as compose does.
-        glUseProgram(program_.get());
-        draw_fullscreen_triangle(frame.empty_vertex_array);
+        draw_into_display(frame, program_);
     }
 
     std::vector<PassOutput> outputs(const FrameResources& frame) const override {
-        return {{.name = "debug_view-colour",
-                 .texture = frame.display.get(),
-                 .width = frame.settings->width,
-                 .height = frame.settings->height,
-                 .decode = OutputDecode::unorm_rgb}};
+        return {display_output(frame, "debug_view-colour")};
     }
 
 private:

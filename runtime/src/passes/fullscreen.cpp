@@ -25,6 +25,21 @@ void draw_fullscreen_triangle(GLuint empty_vertex_array) {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void draw_into_display(FrameResources& frame, const gl::Program& program) {
+    begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
+                     frame.settings->height);
+    glUseProgram(program.get());
+    draw_fullscreen_triangle(frame.empty_vertex_array);
+}
+
+PassOutput display_output(const FrameResources& frame, std::string name) {
+    return {.name = std::move(name),
+            .texture = frame.display.get(),
+            .width = frame.settings->width,
+            .height = frame.settings->height,
+            .decode = OutputDecode::unorm_rgb};
+}
+
 gl::Framebuffer framebuffer_for(const gl::Texture& texture, const char* what) {
     gl::Framebuffer framebuffer = gl::create_framebuffer();
     glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);

@@ -27,19 +27,10 @@ public:
         return settings.view == DebugView::final_image;
     }
 
-    void run(FrameResources& frame) override {
-        begin_fullscreen(frame.display_framebuffer.get(), frame.settings->width,
-                         frame.settings->height);
-        glUseProgram(program_.get());
-        draw_fullscreen_triangle(frame.empty_vertex_array);
-    }
+    void run(FrameResources& frame) override { draw_into_display(frame, program_); }
 
     std::vector<PassOutput> outputs(const FrameResources& frame) const override {
-        return {{.name = "tonemap-colour",
-                 .texture = frame.display.get(),
-                 .width = frame.settings->width,
-                 .height = frame.settings->height,
-                 .decode = OutputDecode::unorm_rgb}};
+        return {display_output(frame, "tonemap-colour")};
     }
 
 private:
