@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,29 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m, std::int64_t boun
 // Radial width of the widest open band holding `taps` consecutive taps
 // (0 <= taps <= n): the canonical open band of the sweep (fast.cpp).
 std::int64_t band_open_width(std::int64_t n, std::int64_t taps);
+
+// The distinct angles of a band's taps, ascending, and how many taps each
+// holds, grown one tap at a time: the sweeps over bands 1 .. n add tap k - 1
+// to reach band k (lattice translation, fast.cpp).
+struct BandAngles {
+    std::vector<std::int64_t> angles;
+    std::vector<std::int32_t> taps_at;
+
+    explicit BandAngles(std::int64_t capacity) {
+        angles.reserve(static_cast<std::size_t>(capacity));
+        taps_at.reserve(static_cast<std::size_t>(capacity));
+    }
+    void add_tap(std::int64_t angle) {
+        const auto at = std::lower_bound(angles.begin(), angles.end(), angle);
+        const auto index = at - angles.begin();
+        if (at != angles.end() && *at == angle) {
+            taps_at[static_cast<std::size_t>(index)] += 1;
+        } else {
+            angles.insert(at, angle);
+            taps_at.insert(taps_at.begin() + index, 1);
+        }
+    }
+};
 
 // The worst excess of the band of `taps` consecutive taps whose distinct
 // angles (ascending) and multiplicities are given, closed and open sectors

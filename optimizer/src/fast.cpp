@@ -258,22 +258,9 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
     if (!worst_sector && known_lower_bound > best) best = known_lower_bound;
     std::int64_t last_excess = 0, last_m = 0;
 
-    // Distinct angles of the band's taps, ascending, and how many taps each holds.
-    std::vector<std::int64_t> angles;
-    std::vector<std::int32_t> taps_at;
-    angles.reserve(static_cast<std::size_t>(lattice.n));
-    taps_at.reserve(static_cast<std::size_t>(lattice.n));
+    BandAngles band(lattice.n);
     for (std::int64_t m = 1; m <= lattice.n && best <= bound; ++m) {
-        const std::int64_t angle = lattice.angular(m - 1);
-        const auto at = std::lower_bound(angles.begin(), angles.end(), angle);
-        const auto index = at - angles.begin();
-        if (at != angles.end() && *at == angle) {
-            taps_at[static_cast<std::size_t>(index)] += 1;
-        } else {
-            angles.insert(at, angle);
-            taps_at.insert(taps_at.begin() + index, 1);
-        }
-
+        band.add_tap(lattice.angular(m - 1));
         if (!worst_sector) {
             // Adding one tap changes a band's worst excess by at most 4nm:
             // for any fixed arc, the count grows by 0 or 1 (worth 4nm) and
@@ -283,7 +270,7 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
             // scan can be skipped without changing the maximum.
             if (last_m > 0 && last_excess + count_unit * (m - last_m) <= best) continue;
             const std::int64_t excess =
-                band_excess(angles, taps_at, m, open_width(m), count_unit, circle);
+                band_excess(band.angles, band.taps_at, m, open_width(m), count_unit, circle);
             last_excess = excess;
             last_m = m;
             if (excess > best) {
@@ -293,7 +280,7 @@ std::int64_t evaluate(int n, std::int64_t tau, std::int64_t m_den, std::int64_t 
             continue;
         }
         for (const BandWorst& band :
-             scan_band(angles, taps_at, m, open_width(m), count_unit, circle)) {
+             scan_band(band.angles, band.taps_at, m, open_width(m), count_unit, circle)) {
             if (band.excess > best) {
                 best = band.excess;
                 best_band = band;

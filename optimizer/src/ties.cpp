@@ -33,22 +33,11 @@ std::vector<std::int64_t> band_profile(int n, std::int64_t tau, std::int64_t m, 
     // Taps 0 .. k-1 stand for every band of k consecutive taps (lattice
     // translation, fast.cpp); one insertion per band keeps the angles sorted,
     // so the whole profile costs O(n^2), as one full sweep does.
-    std::vector<std::int64_t> angles;
-    std::vector<std::int32_t> taps_at;
-    angles.reserve(static_cast<std::size_t>(n));
-    taps_at.reserve(static_cast<std::size_t>(n));
+    BandAngles band(lattice.n);
     for (std::int64_t k = 1; k <= lattice.n; ++k) {
-        const std::int64_t angle = lattice.angular(k - 1);
-        const auto at = std::lower_bound(angles.begin(), angles.end(), angle);
-        const auto index = at - angles.begin();
-        if (at != angles.end() && *at == angle) {
-            taps_at[static_cast<std::size_t>(index)] += 1;
-        } else {
-            angles.insert(at, angle);
-            taps_at.insert(taps_at.begin() + index, 1);
-        }
-        profile[static_cast<std::size_t>(k)] =
-            band_excess(angles, taps_at, k, band_open_width(lattice.n, k), count_unit, circle);
+        band.add_tap(lattice.angular(k - 1));
+        profile[static_cast<std::size_t>(k)] = band_excess(
+            band.angles, band.taps_at, k, band_open_width(lattice.n, k), count_unit, circle);
     }
     return profile;
 }
