@@ -7,35 +7,23 @@
 // conversion, which the JSON fuzzer rarely reaches with a decodable image.
 #include "deepgi/errors.hpp"
 #include "deepgi/scene.hpp"
-
-#include <fmt/format.h>
+#include "gltf_support.hpp"
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace {
 
-void append_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-    for (int shift = 0; shift < 32; shift += 8) out.push_back(std::uint8_t(v >> shift));
-}
-
+// The textured triangle's GLB (gltf_support.hpp) with its image view laid
+// out as `layout` says.
 std::vector<std::uint8_t> textured_glb(std::span<const std::uint8_t> image, std::uint8_t layout) {
-    std::vector<std::uint8_t> bin;
-    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &v, 4);
-        append_u32(bin, bits);
-    }
-    for (std::uint32_t i : {0u, 1u, 2u}) append_u32(bin, i);
-    bin.insert(bin.end(), image.begin(), image.end());
-    const std::uint64_t buffer_length = bin.size();
-    while (bin.size() % 4) bin.push_back(0);
-    std::uint64_t offset = 48;
-    std::uint64_t length = image.size();
+    const auto size = std::int64_t(image.size());
+    const std::int64_t buffer_length = 48 + size;
+    std::int64_t offset = 48;
+    std::int64_t length = size;
     switch (layout % 6) {
         case 1:
             length += 1;
@@ -44,38 +32,20 @@ std::vector<std::uint8_t> textured_glb(std::span<const std::uint8_t> image, std:
             offset = buffer_length + 4;
             break;
         case 3:
-            length = 0x7fffffffu;
+            length = 0x7fffffff;
             break;
         case 4:
-            length = 0x100000000ull + image.size();
+            length = 0x100000000ll + size;
             break;
         case 5:
-            length = image.size() / 2;
+            length = size / 2;
             break;
         default:
             break;
     }
-    std::string json = fmt::format(
-        R"({{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{}}}],)"
-        R"("bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":12}},)"
-        R"({{"buffer":0,"byteOffset":{},"byteLength":{}}}],)"
-        R"("accessors":[{{"bufferView":0,"componentType":5126,"type":"VEC3","count":3}},)"
-        R"({{"bufferView":1,"componentType":5125,"type":"SCALAR","count":3}}],)"
-        R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1,"material":0}}]}}],)"
-        R"("nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,)"
-        R"("images":[{{"bufferView":2,"mimeType":"image/png"}}],"textures":[{{"source":0}}],)"
-        R"("materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}]}})",
-        buffer_length, offset, length);
-    while (json.size() % 4) json += ' ';
-    std::vector<std::uint8_t> out;
-    const std::uint32_t total = std::uint32_t(12 + 8 + json.size() + 8 + bin.size());
-    for (std::uint32_t v : {0x46546c67u, 2u, total, std::uint32_t(json.size()), 0x4e4f534au})
-        append_u32(out, v);
-    out.insert(out.end(), json.begin(), json.end());
-    append_u32(out, std::uint32_t(bin.size()));
-    append_u32(out, 0x004e4942u);
-    out.insert(out.end(), bin.begin(), bin.end());
-    return out;
+    const std::string file =
+        deepgi::test::textured_glb({image.begin(), image.end()}, offset, length);
+    return {file.begin(), file.end()};
 }
 
 }  // namespace
