@@ -116,26 +116,26 @@ RadiosityMethod parse_radiosity_method(std::string_view option, std::string_view
 }
 
 ImageSize parse_size(std::string_view option, std::string_view text) {
-    // Digits, 'x', digits: no sign, no spaces, no other base (from_chars
-    // accepts none of them for an int).
+    // Digits, 'x', digits: no sign, no spaces, no other base. A side of more
+    // digits than any allowed side has is out of range, not malformed.
     const std::size_t cross = text.find('x');
-    ImageSize size;
-    auto parse_side = [](std::string_view digits, int& side) {
-        if (digits.empty() || digits.size() > 5) return false;
-        for (char c : digits)
-            if (c < '0' || c > '9') return false;
-        side = std::stoi(std::string(digits));
-        return true;
+    auto digits_only = [](std::string_view digits) {
+        return !digits.empty() && std::all_of(digits.begin(), digits.end(),
+                                              [](char c) { return c >= '0' && c <= '9'; });
     };
-    if (cross == std::string_view::npos || !parse_side(text.substr(0, cross), size.width) ||
-        !parse_side(text.substr(cross + 1), size.height)) {
+    if (cross == std::string_view::npos || !digits_only(text.substr(0, cross)) ||
+        !digits_only(text.substr(cross + 1))) {
         throw InputError(
             fmt::format("{} '{}' is not WIDTHxHEIGHT (for example 1280x720)", option, text));
     }
+    auto side = [](std::string_view digits) {
+        return digits.size() > 5 ? limits::max_image_side + 1 : std::stoi(std::string(digits));
+    };
+    const ImageSize size{side(text.substr(0, cross)), side(text.substr(cross + 1))};
     if (size.width < 1 || size.height < 1 || size.width > limits::max_image_side ||
         size.height > limits::max_image_side) {
-        throw InputError(fmt::format("{} {}x{} is out of range (1 to {} per side)", option,
-                                     size.width, size.height, limits::max_image_side));
+        throw InputError(fmt::format("{} {} is out of range (1 to {} per side)", option, text,
+                                     limits::max_image_side));
     }
     return size;
 }

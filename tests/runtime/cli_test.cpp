@@ -68,6 +68,8 @@ void require_one_line_error(const std::string& arguments, const std::string& exp
 TEST_CASE("cli: bad arguments give a one-line error and exit status 2", "[runtime][cli]") {
     require_one_line_error("--headless --size 0x90", "--size");
     require_one_line_error("--headless --size big", "--size");
+    // A side with more digits than any allowed side is too large, not malformed.
+    require_one_line_error("--headless --size 100000x90", "out of range (1 to 16384 per side)");
     require_one_line_error("--headless --size 160x90 --generator oracle", "--generator");
     require_one_line_error("--headless --size 160x90 --min-separation -1", "--min-separation");
     require_one_line_error("--headless --size 160x90 --frames 0", "--frames");

@@ -17,7 +17,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <regex>
 
 namespace {
 
@@ -84,18 +83,15 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     try {
-        std::smatch match;
-        static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-        if (!std::regex_match(size, match, pattern))
-            throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT", size));
+        const deepgi::ImageSize image = deepgi::parse_size("--size", size);
         if (rotations < 2) throw deepgi::InputError("--rotations must be at least 2");
         for (int n : tap_counts) {
             if (n < 1 || n > 1024)
                 throw deepgi::InputError(fmt::format("--taps {} is out of range (1 to 1024)", n));
         }
         deepgi::RenderSettings settings;
-        settings.width = std::stoi(match[1].str());
-        settings.height = std::stoi(match[2].str());
+        settings.width = image.width;
+        settings.height = image.height;
         settings.shadow_map_size = 256;
         // The spiral gather: the march casts rays of its own, whatever the pattern.
         settings.ao.method = deepgi::AoMethod::solid_angle;

@@ -36,7 +36,6 @@
 #include <fstream>
 #include <sstream>
 #include <map>
-#include <regex>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -250,10 +249,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     try {
-        std::smatch match;
-        static const std::regex pattern(R"(^(\d{1,5})x(\d{1,5})$)");
-        if (!std::regex_match(size, match, pattern))
-            throw deepgi::InputError(fmt::format("--size '{}' is not WIDTHxHEIGHT", size));
+        const deepgi::ImageSize image = deepgi::parse_size("--size", size);
         if (min_n < 1 || max_n > 1024 || min_n > max_n)
             throw deepgi::InputError(fmt::format(
                 "--min-n {} and --max-n {} must satisfy 1 <= min <= max <= 1024", min_n, max_n));
@@ -270,8 +266,8 @@ int main(int argc, char** argv) {
                 fmt::format("--pick '{}' is not band, smallest or largest-pair", rule));
 
         deepgi::RenderSettings settings;
-        settings.width = std::stoi(match[1].str());
-        settings.height = std::stoi(match[2].str());
+        settings.width = image.width;
+        settings.height = image.height;
         settings.shadow_map_size = 256;
         // The spiral gather whose sampling error the report tabulates.
         settings.ao.method = deepgi::AoMethod::solid_angle;
