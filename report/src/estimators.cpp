@@ -72,7 +72,7 @@ SliceCost image_slice_cost(const EstimatorOptions& options) {
     return options.slice_costs.empty() ? shipped : options.slice_costs.front();
 }
 
-std::vector<FlickerRow> measure_scene_flicker(const FlickerSetup& setup,
+std::vector<FlickerRow> measure_scene_flicker(const SceneSetup& setup,
                                               std::span<const AoMethod> methods,
                                               const EstimatorOptions& options) {
     std::vector<FlickerRow> rows;
@@ -110,7 +110,7 @@ std::vector<FlickerRow> measure_scene_flicker(const FlickerSetup& setup,
     return rows;
 }
 
-void measure_flicker_rows(const FlickerSetup& setup, const ReportOptions& options,
+void measure_flicker_rows(const SceneSetup& setup, const ReportOptions& options,
                           std::vector<FlickerRow>& rows,
                           const std::function<void(const std::string&)>& log) {
     if (options.estimators.flicker_frames == 0) return;

@@ -179,31 +179,20 @@ ReportResult run_report(const ReportOptions& options) {
     for (const std::string& scene_name : options.scenes) {
         step("scene " + scene_name);
         const Scene scene = load_scene(scene_name);
-        measure_scene_rows(SceneRowsSetup{.scene = scene,
-                                          .scene_name = scene_name,
-                                          .settings = settings,
-                                          .loader = loader,
-                                          .write_headers =
-                                              [&](const std::string& pattern, int n) {
-                                                  write_headers(headers.path(), pattern, n);
-                                              },
-                                          .image_pattern = image_pattern,
-                                          .image_taps = image_taps,
-                                          .image_layers = image_layers,
-                                          .image_cost = image_cost},
-                           options, result, log);
-        measure_flicker_rows(
-            FlickerSetup{.scene = scene,
-                         .scene_name = scene_name,
-                         .settings = settings,
-                         .loader = loader,
-                         .write_headers = [&](const std::string& pattern,
-                                              int n) { write_headers(headers.path(), pattern, n); },
-                         .image_pattern = image_pattern,
-                         .image_taps = image_taps,
-                         .image_layers = image_layers,
-                         .converged_taps = options.converged_taps},
-            options, result.flicker, log);
+        const SceneSetup setup{
+            .scene = scene,
+            .scene_name = scene_name,
+            .settings = settings,
+            .loader = loader,
+            .write_headers = [&](const std::string& pattern,
+                                 int n) { write_headers(headers.path(), pattern, n); },
+            .image_pattern = image_pattern,
+            .image_taps = image_taps,
+            .image_layers = image_layers,
+            .image_cost = image_cost,
+            .converged_taps = options.converged_taps};
+        measure_scene_rows(setup, options, result, log);
+        measure_flicker_rows(setup, options, result.flicker, log);
         for (ReflectionRow& row : measure_reflection_rows(
                  scene_name, scene, settings, options.reflections, options.layers, options.rays,
                  options.seed, options.threads, options.warmup, options.log))

@@ -244,8 +244,8 @@ Row make_row(Row row, const Measured& m) {
 
 }  // namespace
 
-void measure_scene_rows(const SceneRowsSetup& setup, const ReportOptions& options,
-                        ReportResult& result, const std::function<void(const std::string&)>& log) {
+void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, ReportResult& result,
+                        const std::function<void(const std::string&)>& log) {
     const std::string& scene_name = setup.scene_name;
     const Scene& scene = setup.scene;
     const Camera& camera = scene.default_camera;
