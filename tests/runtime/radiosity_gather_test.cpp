@@ -1,5 +1,6 @@
 // Deep radiosity gather against its CPU evaluation, a form-factor integral
 // and its invariants (black albedo, colour bleeding, bounces).
+#include "form_factor_oracle.hpp"
 #include "radiosity_gather_reference.hpp"
 #include "test_scenes.hpp"
 
@@ -382,22 +383,8 @@ Scene banner_behind_column() {
 // banner (x in [-0.3, 0.3], y in [-0.9, 0.5], z = -4, normal +z), by the
 // midpoint rule on 1 cm cells.
 double banner_red_minus_green(glm::vec3 p, double radiance_difference, float radius) {
-    const int nx = 60, ny = 140;
-    const double cell = (0.6 / nx) * (1.4 / ny);
-    double sum = 0.0;
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const glm::dvec3 y(-0.3 + 0.6 * (i + 0.5) / nx, -0.9 + 1.4 * (j + 0.5) / ny, -4.0);
-            const glm::dvec3 v = y - glm::dvec3(p);
-            const double dd = glm::dot(v, v);
-            if (dd >= double(radius) * radius) continue;
-            const double d = std::sqrt(dd);
-            const double cos_x = v.y / d, cos_y = -v.z / d;
-            if (cos_x <= 0.0 || cos_y <= 0.0) continue;
-            sum += cos_x * cos_y / dd * cell;
-        }
-    }
-    return radiance_difference * sum;
+    return radiance_difference *
+           floor_from_wall_form_factor(p, radius, {-0.3, 0.3}, {-0.9, 0.5}, -4.0, 60, 140);
 }
 
 TEST_CASE("radiosity: a banner hidden by a column colours the floor in front through layer 1",

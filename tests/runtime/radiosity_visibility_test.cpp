@@ -1,6 +1,7 @@
 // The radiosity gather's visibility test on a geometry whose answer is known:
 // an emitting wall that a board hides from the floor in front of it, and the
 // same wall behind thinner occluders.
+#include "form_factor_oracle.hpp"
 #include "sao_reference.hpp"
 #include "sao_test_support.hpp"
 #include "support/targets.hpp"
@@ -66,22 +67,7 @@ Scene wall_behind_board(Occluder occluder = Occluder::board) {
 // occlusion: the integral of cos_x cos_y / d^2 over the wall, by the midpoint
 // rule on 2.5 cm cells.
 double wall_irradiance(glm::vec3 p, float radius) {
-    const int nx = 160, ny = 20;
-    const double cell = (4.0 / nx) * (0.5 / ny);
-    double sum = 0.0;
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const glm::dvec3 y(-2.0 + 4.0 * (i + 0.5) / nx, 0.5 * (j + 0.5) / ny, -8.0);
-            const glm::dvec3 v = y - glm::dvec3(p);
-            const double dd = glm::dot(v, v);
-            if (dd >= double(radius) * radius) continue;
-            const double d = std::sqrt(dd);
-            const double cos_x = v.y / d, cos_y = -v.z / d;
-            if (cos_x <= 0.0 || cos_y <= 0.0) continue;
-            sum += cos_x * cos_y / dd * cell;
-        }
-    }
-    return sum;
+    return floor_from_wall_form_factor(p, radius, {-2.0, 2.0}, {0.0, 0.5}, -8.0, 160, 20);
 }
 
 // Mean E of layer 0 over a floor region, after 8 still frames.
