@@ -404,6 +404,11 @@ int main(int argc, char** argv) {
         window.script = options.script;
         window.screenshot_directory = options.screenshot_directory;
         window.shaders = options.shaders;
-        return deepgi::run_interactive(window, settings);
+        try {
+            return deepgi::run_interactive(window, settings);
+        } catch (const deepgi::NoDisplayError& error) {
+            throw deepgi::GraphicsError(
+                fmt::format("{}; --headless --output FILE.png renders without one", error.what()));
+        }
     });
 }

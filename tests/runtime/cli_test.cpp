@@ -116,6 +116,23 @@ TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][
         "is not a glTF file");
 }
 
+TEST_CASE("cli: without a display the window's one-line error names the headless path",
+          "[runtime][cli]") {
+    const fs::path errors = scratch() / "no-display.txt";
+    const std::string command =
+        fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY '{}' --scene cornell 2> '{}' > /dev/null",
+                    DEEPGI_EXECUTABLE, errors.string());
+    const int raw = std::system(command.c_str());
+    const std::string text = read_bytes(errors);
+    INFO(text);
+    // Not the user's input: a graphics error, exit status 1.
+    REQUIRE(WIFEXITED(raw));
+    REQUIRE(WEXITSTATUS(raw) == 1);
+    REQUIRE(std::count(text.begin(), text.end(), '\n') == 1);
+    REQUIRE(text.find("no display") != std::string::npos);
+    REQUIRE(text.find("--headless --output FILE.png") != std::string::npos);
+}
+
 TEST_CASE("cli: headless-only options and a non-PNG output are refused", "[runtime][cli]") {
     // Window mode: refused before any window opens, so no display is needed.
     require_one_line_error("--size 160x90 --dump d --frames 3",

@@ -14,4 +14,9 @@ struct GraphicsError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// No display to open a window on: a front end can point to its headless path.
+struct NoDisplayError : GraphicsError {
+    using GraphicsError::GraphicsError;
+};
+
 }  // namespace deepgi

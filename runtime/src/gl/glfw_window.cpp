@@ -9,7 +9,7 @@ namespace deepgi {
 
 WindowContext::WindowContext(int width, int height, const std::string& title, bool visible) {
     if (glfwInit() != GLFW_TRUE)
-        throw GraphicsError("cannot initialise GLFW (is there a display?)");
+        throw NoDisplayError("cannot open a window: GLFW found no display");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
