@@ -349,6 +349,16 @@ TEST_CASE("gltf specification: required extensions, versions and sparse accessor
     file.extra =
         R"(,"extensionsUsed":["KHR_lights_punctual"],"extensionsRequired":["KHR_lights_punctual"])";
     REQUIRE(refusal(triangle_gltf(file)).empty());
+    // A Draco-compressed mesh's accessors have no buffer view, which tinygltf
+    // refuses before the loader sees the required extensions: the refusal
+    // still names the extension rather than the missing buffer view.
+    file.extra = R"(,"extensionsUsed":["KHR_draco_mesh_compression"],)"
+                 R"("extensionsRequired": [ "KHR_draco_mesh_compression" ])";
+    std::string draco = triangle_gltf(file);
+    draco.erase(draco.find(R"("bufferView":1,)"), 15);  // the indices
+    const std::string draco_message = refusal(draco);
+    INFO(draco_message);
+    REQUIRE(contains(draco_message, "extension KHR_draco_mesh_compression is required"));
     // Major version 2 only; minVersion above what the loader reads.
     std::string json = triangle_gltf({});
     for (const std::string asset :

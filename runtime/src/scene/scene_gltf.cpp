@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -126,6 +128,18 @@ void check_glb_layout(std::span<const std::uint8_t> bytes, const std::string& di
     }
 }
 
+// Refuses a file that requires an extension this loader does not implement,
+// as the specification says a loader must.
+void refuse_unimplemented_extensions(const std::vector<std::string>& required,
+                                     const std::string& display_name) {
+    for (const auto& extension : required)
+        if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
+            throw InputError(
+                fmt::format("glTF file '{}': extension {} is required by the file, "
+                            "and this loader does not implement it",
+                            display_name, extension));
+}
+
 // What the specification says a loader must refuse: another major version,
 // a minVersion above 2.0, and required extensions it does not implement.
 void check_specification(const tinygltf::Model& model, const std::string& display_name) {
@@ -141,11 +155,41 @@ void check_specification(const tinygltf::Model& model, const std::string& displa
     if (!minimum.empty() && minimum != "2.0")
         refuse(fmt::format("asset.minVersion '{}' is above 2.0, the version this loader reads",
                            minimum));
-    for (const auto& extension : model.extensionsRequired)
-        if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
-            refuse(fmt::format(
-                "extension {} is required by the file, and this loader does not implement it",
-                extension));
+    refuse_unimplemented_extensions(model.extensionsRequired, display_name);
+}
+
+// The names in the file's "extensionsRequired" array, found in its JSON text
+// alone, for a file tinygltf could not load: a Draco-compressed mesh has
+// accessors with no buffer view, and tinygltf's "accessor[0] invalid
+// bufferView" would hide that the file needs an extension. Only the message
+// of a refused file depends on it, so a plain scan serves: the first such key
+// followed by an array of plain strings; anything else gives no names.
+std::vector<std::string> required_extension_names(std::string_view json) {
+    const std::string_view key = "\"extensionsRequired\"";
+    std::size_t at = json.find(key);
+    if (at == std::string_view::npos) return {};
+    at += key.size();
+    auto skip_space = [&] {
+        while (at < json.size() && std::isspace(static_cast<unsigned char>(json[at]))) ++at;
+    };
+    auto take = [&](char c) {
+        skip_space();
+        if (at >= json.size() || json[at] != c) return false;
+        ++at;
+        return true;
+    };
+    if (!take(':') || !take('[')) return {};
+    std::vector<std::string> names;
+    if (take(']')) return names;
+    do {
+        if (!take('"')) return {};
+        const std::size_t end = json.find('"', at);
+        const std::string_view name = json.substr(at, end - at);
+        if (end == std::string_view::npos || name.find('\\') != std::string_view::npos) return {};
+        names.emplace_back(name);
+        at = end + 1;
+    } while (take(','));
+    return take(']') ? names : std::vector<std::string>{};
 }
 
 // The checked, limited parse into tinygltf's model. Returned by value so the
@@ -195,6 +239,7 @@ tinygltf::Model parse_gltf(std::span<const std::uint8_t> bytes, bool binary,
                                      one_line(failure.what())));
     }
     if (!loaded) {
+        refuse_unimplemented_extensions(required_extension_names(json), display_name);
         throw InputError(fmt::format("cannot load glTF file '{}': {}", display_name,
                                      one_line(error.empty() ? "unknown error" : error)));
     }
