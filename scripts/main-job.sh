@@ -13,5 +13,8 @@ cat out/tau_table.md
 rm -f build/generated/*.glsl build/generated/*.hpp
 cmake --build build --target spiral_generated_headers
 echo "generated headers in build/generated:" && ls build/generated
-build/apps/deepgi/deepgi --headless --scene cornell --size 1280x720 --frames 16 --output out/demo.png
+# 64 still frames: after 16 the gather's noise still shows as grain on the
+# upper walls at this size (docs/radiosity-studies.md, "How fast a still
+# camera converges"); 64 take about 45 s on llvmpipe with two cores.
+build/apps/deepgi/deepgi --headless --scene cornell --size 1280x720 --frames 64 --output out/demo.png
 echo "rendered out/demo.png"
