@@ -34,10 +34,11 @@ const fs::path& scratch() {
     return dir;
 }
 
-RunResult run_deepgi(const std::string& arguments) {
+// `environment`, if given, prefixes the command (an `env ...` invocation).
+RunResult run_deepgi(const std::string& arguments, const std::string& environment = "") {
     const fs::path errors = scratch() / "stderr.txt";
-    const std::string command =
-        fmt::format("'{}' {} 2> '{}' > /dev/null", DEEPGI_EXECUTABLE, arguments, errors.string());
+    const std::string command = fmt::format("{} '{}' {} 2> '{}' > /dev/null", environment,
+                                            DEEPGI_EXECUTABLE, arguments, errors.string());
     const int raw = std::system(command.c_str());
     RunResult result;
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -118,16 +119,11 @@ TEST_CASE("cli: bad scenes give a one-line error and exit status 2", "[runtime][
 
 TEST_CASE("cli: without a display the window's one-line error names the headless path",
           "[runtime][cli]") {
-    const fs::path errors = scratch() / "no-display.txt";
-    const std::string command =
-        fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY '{}' --scene cornell 2> '{}' > /dev/null",
-                    DEEPGI_EXECUTABLE, errors.string());
-    const int raw = std::system(command.c_str());
-    const std::string text = read_bytes(errors);
+    const RunResult result = run_deepgi("--scene cornell", "env -u DISPLAY -u WAYLAND_DISPLAY");
+    const std::string& text = result.stderr_text;
     INFO(text);
     // Not the user's input: a graphics error, exit status 1.
-    REQUIRE(WIFEXITED(raw));
-    REQUIRE(WEXITSTATUS(raw) == 1);
+    REQUIRE(result.status == 1);
     REQUIRE(std::count(text.begin(), text.end(), '\n') == 1);
     REQUIRE(text.find("no display") != std::string::npos);
     REQUIRE(text.find("--headless --output FILE.png") != std::string::npos);
