@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -116,8 +117,8 @@ RadiosityMethod parse_radiosity_method(std::string_view option, std::string_view
 }
 
 ImageSize parse_size(std::string_view option, std::string_view text) {
-    // Digits, 'x', digits: no sign, no spaces, no other base. A side of more
-    // digits than any allowed side has is out of range, not malformed.
+    // Digits, 'x', digits: no sign, no spaces, no other base. A side too large
+    // for any allowed size is out of range, not malformed.
     const std::size_t cross = text.find('x');
     auto digits_only = [](std::string_view digits) {
         return !digits.empty() && std::all_of(digits.begin(), digits.end(),
@@ -128,8 +129,12 @@ ImageSize parse_size(std::string_view option, std::string_view text) {
         throw InputError(
             fmt::format("{} '{}' is not WIDTHxHEIGHT (for example 1280x720)", option, text));
     }
+    // Digits only, so from_chars fails only past the int range: out of range too.
     auto side = [](std::string_view digits) {
-        return digits.size() > 5 ? limits::max_image_side + 1 : std::stoi(std::string(digits));
+        int value = 0;
+        const auto [end, error] =
+            std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        return error == std::errc() ? value : limits::max_image_side + 1;
     };
     const ImageSize size{side(text.substr(0, cross)), side(text.substr(cross + 1))};
     if (size.width < 1 || size.height < 1 || size.width > limits::max_image_side ||
