@@ -158,8 +158,8 @@ TEST_CASE("sao: an unoccluded plane has visibility 1", "[reference]") {
 // solid met by an early tap can take a bin that a nearer layer-0 solid of a
 // later tap would have weighted more (10 of 14400 pixels of warehouse at
 // 160x90, 3 of atrium's and of cornell's; taking layer 1 after layer 0
-// removes them and costs the pass about a tenth, docs/deep-sao.md, "The
-// thick spiral"). Its two layers are held to "never worse than one" in MAE
+// removes them and cost the pass a fifth to a quarter more, docs/deep-sao.md,
+// "The thick spiral"). Its two layers are held to "never worse than one" in MAE
 // against the ray tracer (ao_accuracy_test.cpp).
 TEST_CASE("sao: two layers never see less occlusion than one", "[reference]") {
     HeadlessContext context;
