@@ -91,7 +91,7 @@ const std::array<NumericSetting, 34> numeric_table = {{
      .minimum = float(limits::min_shadow_map_size),
      .maximum = float(limits::max_shadow_map_size),
      .slider_min = float(limits::min_shadow_map_size),
-     .slider_max = 4096.0f,
+     .slider_max = 8192.0f,
      .logarithmic = true,
      .effect = reallocate,
      DEEPGI_INT_FIELD(shadow_map_size)},

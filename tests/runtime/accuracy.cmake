@@ -32,3 +32,15 @@ deepgi_add_targets_missed(NAME deepgi_radiosity_accuracy_targets_missed
 set_tests_properties(deepgi_sao_march PROPERTIES FIXTURES_SETUP ao_march_beam_figures)
 deepgi_add_targets_missed(NAME deepgi_ao_march_beam_targets_missed TITLE "AO march beam targets"
   TABLE ao-march-beam-targets.md FIXTURE ao_march_beam_figures LABELS runtime sao)
+
+# The direct light's shadow map against traced shadow rays (headless EGL and
+# Embree, one process for its scenes).
+add_executable(deepgi_shadow_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/shadow_accuracy_test.cpp)
+target_link_libraries(deepgi_shadow_accuracy_tests PRIVATE deepgi::reference spiral_catch_main fmt::fmt)
+target_include_directories(deepgi_shadow_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+add_test(NAME deepgi_shadow_accuracy COMMAND deepgi_shadow_accuracy_tests "[shadow-accuracy]")
+set_tests_properties(deepgi_shadow_accuracy PROPERTIES LABELS "runtime" TIMEOUT 600
+  FIXTURES_SETUP shadow_accuracy_figures)
+deepgi_add_targets_missed(NAME deepgi_shadow_accuracy_targets_missed
+  TITLE "Shadow accuracy targets" TABLE shadow-accuracy-targets.md
+  FIXTURE shadow_accuracy_figures LABELS runtime)

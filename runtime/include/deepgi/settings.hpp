@@ -292,7 +292,7 @@ struct RenderSettings {
     // confidence is low (with radiosity and AO off too: direct light only).
     bool environment = true;
     DebugView view = DebugView::final_image;
-    int shadow_map_size = 2048;
+    int shadow_map_size = 4096;
     int antialias = 1;  // 1: the anti-aliasing pass filters the final image; 0: off
     // The temporal sequence's index on the first frame after history is
     // dropped (frame.cpp): frame k after it uses Sobol point temporal_offset + k.
