@@ -9,11 +9,10 @@ target_compile_definitions(deepgi_ao_accuracy_tests PRIVATE SAO_TEST_BLUR_RADIUS
 # Three estimators on seven scenes, the thick spiral over 64 still frames:
 # up to about 20 minutes on llvmpipe, 2 cores.
 add_test(NAME deepgi_ao_accuracy COMMAND deepgi_ao_accuracy_tests "[ao-accuracy]")
-set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 1800
-  FIXTURES_SETUP ao_accuracy_figures)
+set_tests_properties(deepgi_ao_accuracy PROPERTIES LABELS "runtime;sao" TIMEOUT 1800)
 # Every target deepgi_ao_accuracy measures, printed (targets_missed.cmake).
 deepgi_add_targets_missed(NAME deepgi_ao_accuracy_targets_missed TITLE "AO accuracy targets"
-  TABLE ao-accuracy-targets.md FIXTURE ao_accuracy_figures LABELS runtime sao)
+  TABLE ao-accuracy-targets.md SUITE deepgi_ao_accuracy LABELS runtime sao)
 
 # Deep radiosity against the reference's one-bounce irradiance (headless EGL
 # and Embree, one process for its scenes).
@@ -21,17 +20,15 @@ add_executable(deepgi_radiosity_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/radiosi
 target_link_libraries(deepgi_radiosity_accuracy_tests PRIVATE deepgi::reference spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_radiosity_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 add_test(NAME deepgi_radiosity_accuracy COMMAND deepgi_radiosity_accuracy_tests "[radiosity-accuracy]")
-set_tests_properties(deepgi_radiosity_accuracy PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600
-  FIXTURES_SETUP radiosity_accuracy_figures)
+set_tests_properties(deepgi_radiosity_accuracy PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600)
 deepgi_add_targets_missed(NAME deepgi_radiosity_accuracy_targets_missed
   TITLE "Radiosity accuracy targets" TABLE radiosity-accuracy-targets.md
-  FIXTURE radiosity_accuracy_figures LABELS runtime radiosity)
+  SUITE deepgi_radiosity_accuracy LABELS runtime radiosity)
 
 # The march behind a thin beam (ao_march_beam_test.cpp, in deepgi_sao_tests):
-# its known miss, printed (sao.cmake is read before targets_missed.cmake).
-set_tests_properties(deepgi_sao_march PROPERTIES FIXTURES_SETUP ao_march_beam_figures)
+# its known miss, printed (sao.cmake, which defines that test, is read first).
 deepgi_add_targets_missed(NAME deepgi_ao_march_beam_targets_missed TITLE "AO march beam targets"
-  TABLE ao-march-beam-targets.md FIXTURE ao_march_beam_figures LABELS runtime sao)
+  TABLE ao-march-beam-targets.md SUITE deepgi_sao_march LABELS runtime sao)
 
 # The direct light's shadow map against traced shadow rays (headless EGL and
 # Embree, one process for its scenes).
@@ -39,8 +36,7 @@ add_executable(deepgi_shadow_accuracy_tests ${CMAKE_CURRENT_LIST_DIR}/shadow_acc
 target_link_libraries(deepgi_shadow_accuracy_tests PRIVATE deepgi::reference spiral_catch_main fmt::fmt)
 target_include_directories(deepgi_shadow_accuracy_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 add_test(NAME deepgi_shadow_accuracy COMMAND deepgi_shadow_accuracy_tests "[shadow-accuracy]")
-set_tests_properties(deepgi_shadow_accuracy PROPERTIES LABELS "runtime" TIMEOUT 600
-  FIXTURES_SETUP shadow_accuracy_figures)
+set_tests_properties(deepgi_shadow_accuracy PROPERTIES LABELS "runtime" TIMEOUT 600)
 deepgi_add_targets_missed(NAME deepgi_shadow_accuracy_targets_missed
   TITLE "Shadow accuracy targets" TABLE shadow-accuracy-targets.md
-  FIXTURE shadow_accuracy_figures LABELS runtime)
+  SUITE deepgi_shadow_accuracy LABELS runtime)

@@ -16,13 +16,12 @@ target_compile_definitions(deepgi_radiosity_tests PRIVATE
   SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
   SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
 add_test(NAME deepgi_radiosity COMMAND deepgi_radiosity_tests "[radiosity]")
-set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600
-  FIXTURES_SETUP radiosity_visibility_figures)
+set_tests_properties(deepgi_radiosity PROPERTIES LABELS "runtime;radiosity" TIMEOUT 600)
 # The visibility test's targets behind thin occluders, printed; skipped while
 # any is missed.
 deepgi_add_targets_missed(NAME deepgi_radiosity_visibility_targets_missed
   TITLE "Radiosity visibility targets" TABLE radiosity-visibility-targets.md
-  FIXTURE radiosity_visibility_figures LABELS runtime radiosity)
+  SUITE deepgi_radiosity LABELS runtime radiosity)
 
 # Temporal filter of the AO (labels runtime and sao).
 add_executable(deepgi_ao_temporal_tests ao_temporal_test.cpp)
@@ -32,11 +31,10 @@ target_compile_definitions(deepgi_ao_temporal_tests PRIVATE
   SAO_TEST_AO_TAPS=${AO_TAPS} SAO_TEST_AO_TAU=0
   SAO_TEST_BLUR_RADIUS=${BLUR_RADIUS} SAO_TEST_BLUR_SIGMA="${BLUR_SIGMA}")
 add_test(NAME deepgi_ao_temporal COMMAND deepgi_ao_temporal_tests "[ao_temporal]")
-set_tests_properties(deepgi_ao_temporal PROPERTIES LABELS "runtime;sao" TIMEOUT 600
-  FIXTURES_SETUP ao_temporal_figures)
+set_tests_properties(deepgi_ao_temporal PROPERTIES LABELS "runtime;sao" TIMEOUT 600)
 # The filter's targets under camera motion, printed; skipped while any is missed.
 deepgi_add_targets_missed(NAME deepgi_ao_temporal_targets_missed TITLE "AO temporal targets"
-  TABLE ao-temporal-targets.md FIXTURE ao_temporal_figures LABELS runtime sao)
+  TABLE ao-temporal-targets.md SUITE deepgi_ao_temporal LABELS runtime sao)
 
 # The temporal filters under a light change (labels runtime and radiosity).
 add_executable(deepgi_lighting_change_tests lighting_change_test.cpp)
@@ -60,9 +58,8 @@ add_test(NAME deepgi_temporal_convergence COMMAND deepgi_temporal_convergence_te
 # 171 s at 160x90 on a lightly loaded 2-core machine (most of it the 256
 # frames of the 76-tap converged images); the timeout leaves room for a
 # loaded one, where it took 600 s.
-set_tests_properties(deepgi_temporal_convergence PROPERTIES LABELS "runtime;radiosity" TIMEOUT 1200
-  FIXTURES_SETUP temporal_convergence_figures)
+set_tests_properties(deepgi_temporal_convergence PROPERTIES LABELS "runtime;radiosity" TIMEOUT 1200)
 # The convergence targets, printed; skipped while any is missed.
 deepgi_add_targets_missed(NAME deepgi_temporal_convergence_targets_missed
   TITLE "Temporal convergence targets" TABLE temporal-convergence-targets.md
-  FIXTURE temporal_convergence_figures LABELS runtime radiosity)
+  SUITE deepgi_temporal_convergence LABELS runtime radiosity)

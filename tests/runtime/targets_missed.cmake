@@ -5,18 +5,23 @@
 # missed, so every ctest summary names the misses.
 #
 # deepgi_add_targets_missed(NAME <entry> TITLE <printed title> TABLE <table.md>
-#                           FIXTURE <the suite's FIXTURES_SETUP> LABELS <label>...)
+#                           SUITE <the suite's test> LABELS <label>...)
+#
+# The suite (defined before the call) sets up a fixture named after the
+# entry, which the entry requires: ctest runs the suite first, and a run of
+# the entry alone runs the suite too.
 #
 # Each call also adds "<title>:<table>" to the global property
 # DEEPGI_TARGETS_MISSED; deepgi_write_targets_missed_list() writes them to
 # targets-missed.list beside the tables, which scripts/test.sh reads to print
 # the misses again at the end of its log, so the list lives here only.
 function(deepgi_add_targets_missed)
-  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "NAME;TITLE;TABLE;FIXTURE" "LABELS")
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "NAME;TITLE;TABLE;SUITE" "LABELS")
   add_test(NAME ${ARG_NAME}
     COMMAND sh ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/print_targets.sh "${ARG_TITLE}" ${ARG_TABLE})
+  set_property(TEST ${ARG_SUITE} APPEND PROPERTY FIXTURES_SETUP ${ARG_NAME})
   set_tests_properties(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}"
-    FIXTURES_REQUIRED ${ARG_FIXTURE} SKIP_RETURN_CODE 77)
+    FIXTURES_REQUIRED ${ARG_NAME} SKIP_RETURN_CODE 77)
   set_property(GLOBAL APPEND PROPERTY DEEPGI_TARGETS_MISSED "${ARG_TITLE}:${ARG_TABLE}")
 endfunction()
 
