@@ -10,10 +10,13 @@
 // is a solid from its front point to the point `sao.thickness` farther along
 // its view ray (the constant thickness, ao-thickness), and sets the bits of
 // the sectors whose centre lies between the angles of those two points.
-// The unset sectors are weighted by their cosine-weighted measure
-// |n_p| (G(b) - G(a)) (the GTAO inner integral over the sector), not by
-// their count, so that the estimate is of the same ambient visibility as
-// the others; as GTAO's, the sum over slices is divided by the open one.
+// The samples are taken outward, so a sector's first setter stands for its
+// first occluder: the bits a sample sets first count with its falloff f(d)
+// = 1 - d^2 / r^2 at its front point, the reference's, and with their
+// cosine-weighted measure |n_p| (G(b) - G(a)) (the GTAO inner integral over
+// the sector), not their count, so that the estimate is of the same
+// falloff-weighted ambient visibility as the others; as GTAO's, the slices'
+// hidden measures are taken from their open one and divided by it.
 
 const int bitmask_sectors = 32;
 
@@ -29,27 +32,49 @@ uint sector_bits(float lo, float hi) {
   return (count == bitmask_sectors ? 0xffffffffu : ((1u << uint(count)) - 1u)) << uint(first);
 }
 
-// One layer's sample at pixel `at` (linear depth z, 0 = nothing): the
-// sectors its solid hides, the half circle starting at `start`. A function
+// The measure |n_p| (G(b) - G(a)) / |n_p| of the sectors set in `bits`, the
+// half circle starting at `start`: a run of set bits costs two evaluations
+// of G where summing its sectors one by one would cost one more per sector.
+float sectors_measure(uint bits, float start, float n) {
+  float sum = 0.0;
+  while (bits != 0u) {
+    int first = findLSB(bits);
+    uint above = ~(bits >> uint(first));  // the run's end is its lowest zero
+    int end = above == 0u ? bitmask_sectors : first + findLSB(above);
+    sum += slice_measure(start + pi * float(end) / float(bitmask_sectors), n) -
+           slice_measure(start + pi * float(first) / float(bitmask_sectors), n);
+    bits &= end >= bitmask_sectors ? 0u : ~((1u << uint(end)) - 1u);
+  }
+  return sum;
+}
+
+// One layer's sample at pixel `at` (linear depth z, 0 = nothing): sets the
+// sectors its solid hides, the half circle starting at `start`, and adds the
+// measure of those it sets first, times its falloff, to `hidden`. A function
 // called once per layer, not a loop over the layers: llvmpipe runs a loop
 // over the layers as a loop, each select on the layer at run time
 // (docs/ao-accuracy.md, "One call per layer in every estimator").
-uint bitmask_sample(AoSlice slice, ivec2 at, float z, float start, vec3 position, vec3 normal,
-                    float radius_squared, float footprint_bias) {
-  if (z <= 0.0) return 0u;
+void bitmask_sample(AoSlice slice, ivec2 at, float z, float start, vec3 position, vec3 normal,
+                    float inverse_radius_squared, float footprint_bias, inout uint occupied,
+                    inout float hidden) {
+  if (z <= 0.0) return;
   vec3 front = camera_position_at(vec2(at) + 0.5, z, frame.internal_size, frame.camera_ray_scale);
   vec3 w = front - position;
-  if (dot(w, w) >= radius_squared || dot(w, normal) <= footprint_bias) return 0u;
+  float falloff = 1.0 - dot(w, w) * inverse_radius_squared;
+  if (falloff <= 0.0 || dot(w, normal) <= footprint_bias) return;
   float a = slice_angle(slice, w);
   float b = slice_angle(slice, w + normalize(front) * sao.thickness);
-  return sector_bits((min(a, b) - start) / pi, (max(a, b) - start) / pi);
+  uint fresh = sector_bits((min(a, b) - start) / pi, (max(a, b) - start) / pi) & ~occupied;
+  if (fresh == 0u) return;
+  occupied |= fresh;
+  hidden += falloff * sectors_measure(fresh, start, slice.normal_angle);
 }
 
 // The visibility in [0, 1], raised to `intensity`.
 float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float radius,
                     float radius_pixels, float bias, float footprint_bias, float intensity,
                     mat2 rotation) {
-  float radius_squared = radius * radius;
+  float inverse_radius_squared = 1.0 / (radius * radius);
   float jitter = slice_jitter(pixel);
   float visible = 0.0;
   float open = 0.0;
@@ -58,30 +83,22 @@ float ao_visibility(ivec2 pixel, float depth, vec3 position, vec3 normal, float 
     float n = slice.normal_angle;
     float start = n - 0.5 * pi;
     uint occupied = 0u;
+    float hidden = 0.0;
     for (int side_index = 0; side_index < 2; ++side_index) {
       float side = side_index == 0 ? -1.0 : 1.0;
       for (int k = 0; k < sao.steps; ++k) {
         ivec2 at;
         if (!slice_sample(slice, pixel, side, k, jitter, radius_pixels, at)) continue;
         vec2 depths = texelFetch(depth_pyramid, at, 0).rg;
-        occupied |= bitmask_sample(slice, at, depths.r, start, position, normal, radius_squared, footprint_bias);
+        bitmask_sample(slice, at, depths.r, start, position, normal, inverse_radius_squared, footprint_bias, occupied,
+                       hidden);
 #if AO_LAYERS > 1
-        occupied |= bitmask_sample(slice, at, depths.g, start, position, normal, radius_squared, footprint_bias);
+        bitmask_sample(slice, at, depths.g, start, position, normal, inverse_radius_squared, footprint_bias, occupied,
+                       hidden);
 #endif
       }
     }
-    // The open measure less that of each run of set bits: a run costs two
-    // evaluations of G where summing the 32 sectors would cost 33.
     float slice_open = slice_measure(n + 0.5 * pi, n) - slice_measure(start, n);
-    float hidden = 0.0;
-    while (occupied != 0u) {
-      int first = findLSB(occupied);
-      uint above = ~(occupied >> uint(first));  // the run's end is its lowest zero
-      int end = above == 0u ? bitmask_sectors : first + findLSB(above);
-      hidden += slice_measure(start + pi * float(end) / float(bitmask_sectors), n) -
-                slice_measure(start + pi * float(first) / float(bitmask_sectors), n);
-      occupied &= end >= bitmask_sectors ? 0u : ~((1u << uint(end)) - 1u);
-    }
     visible += slice.normal_length * (slice_open - hidden);
     open += slice.normal_length * slice_open;
   }

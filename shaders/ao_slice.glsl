@@ -21,6 +21,8 @@ struct AoSlice {
   vec2 direction;   // d on screen, unit
   float normal_angle;   // n
   float normal_length;  // |n_p|
+  float cos_n;          // cos(n), sin(n)
+  float sin_n;
 };
 
 float slice_measure(float h, float n) {
@@ -42,7 +44,19 @@ AoSlice make_slice(int s, int slices, vec3 position, vec3 normal, mat2 rotation)
   slice.normal_length = length(projected);
   float cos_n = slice.normal_length > 0.0 ? clamp(dot(projected, slice.view) / slice.normal_length, -1.0, 1.0) : 1.0;
   slice.normal_angle = (dot(projected, slice.along) < 0.0 ? -1.0 : 1.0) * acos(cos_n);
+  slice.cos_n = cos_n;
+  slice.sin_n = sin(slice.normal_angle);
   return slice;
+}
+
+// G(theta) for the direction of a vector with components p along and q
+// along V in the slice (theta = atan(p, q), given), without a cosine:
+// cos(2 theta - n) = cos(2 theta) cos(n) + sin(2 theta) sin(n), and
+// cos(2 theta), sin(2 theta) are (q^2 - p^2, 2 p q) / (p^2 + q^2).
+float slice_measure_of(AoSlice slice, float p, float q, float theta) {
+  float c = ((q * q - p * p) * slice.cos_n + 2.0 * p * q * slice.sin_n) / (p * p + q * q);
+  float g = 0.25 * (-c + slice.cos_n + 2.0 * theta * slice.sin_n);
+  return theta < 0.0 ? -g : g;
 }
 
 // The signed slice angle of the vector w from X.

@@ -1,6 +1,7 @@
 #include "ao_slice_reference.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -77,9 +78,16 @@ float pixel_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float
     for (int s = 0; s < settings.slices; ++s) {
         const Slice slice = make_slice(s, settings.slices, position, normal, c, sn);
         const float n = slice.n;
-        float low = n - 0.5f * pi, high = n + 0.5f * pi;
+        const float start = n - 0.5f * pi;
+        // gtao: each side's horizon and the falloff-weighted measure of its
+        // rises. bitmask: each sector's falloff, that of the first sample
+        // that set it (0: unset).
+        float low = start;
+        float hidden = 0.0f;
+        std::array<float, sectors> sector_falloff{};
         std::uint32_t occupied = 0u;
         for (const float side : {-1.0f, 1.0f}) {
+            float horizon = side > 0.0f ? n + 0.5f * pi : start;
             for (int k = 0; k < settings.steps; ++k) {
                 const float t = (float(k) + jitter) / float(settings.steps) * radius_pixels;
                 const float step = std::min(t, 65536.0f);
@@ -93,35 +101,38 @@ float pixel_visibility(int x, int y, glm::vec3 position, glm::vec3 normal, float
                     const glm::vec3 front =
                         camera_position(float(ax) + 0.5f, float(ay) + 0.5f, z, inputs);
                     const glm::vec3 w = front - position;
-                    if (glm::dot(w, w) >= radius_squared || glm::dot(w, normal) <= footprint_bias)
-                        continue;
+                    const float dd = glm::dot(w, w);
+                    if (dd >= radius_squared || glm::dot(w, normal) <= footprint_bias) continue;
+                    const float falloff = 1.0f - dd / radius_squared;
                     const float a = angle_in(slice, w);
                     if (!bitmask) {
-                        if (side > 0.0f)
-                            high = std::min(high, a);
-                        else
-                            low = std::max(low, a);
+                        // Side +1's horizon stops at side -1's.
+                        const float theta = std::clamp(a, side > 0.0f ? low : start, n + 0.5f * pi);
+                        if (side > 0.0f ? theta >= horizon : theta <= horizon) continue;
+                        hidden += falloff * std::abs(measure(theta, n) - measure(horizon, n));
+                        horizon = theta;
                         continue;
                     }
                     const float b = angle_in(slice, w + glm::normalize(front) * settings.thickness);
-                    const float start = n - 0.5f * pi;
-                    occupied |=
+                    const std::uint32_t bits =
                         sector_bits((std::min(a, b) - start) / pi, (std::max(a, b) - start) / pi);
+                    for (int i = 0; i < sectors; ++i)
+                        if ((bits & ~occupied) & (1u << i))
+                            sector_falloff[std::size_t(i)] = falloff;
+                    occupied |= bits;
                 }
             }
+            if (side < 0.0f) low = horizon;
         }
-        const float start = n - 0.5f * pi;
         if (bitmask) {
-            for (int i = 0; i < sectors; ++i) {
-                if (occupied & (1u << i)) continue;
-                visible += slice.length * (measure(start + pi * float(i + 1) / float(sectors), n) -
-                                           measure(start + pi * float(i) / float(sectors), n));
-            }
-        } else {
-            high = std::max(high, low);
-            visible += slice.length * (measure(high, n) - measure(low, n));
+            for (int i = 0; i < sectors; ++i)
+                hidden += sector_falloff[std::size_t(i)] *
+                          (measure(start + pi * float(i + 1) / float(sectors), n) -
+                           measure(start + pi * float(i) / float(sectors), n));
         }
-        open += slice.length * (measure(n + 0.5f * pi, n) - measure(start, n));
+        const float slice_open = measure(n + 0.5f * pi, n) - measure(start, n);
+        visible += slice.length * (slice_open - hidden);
+        open += slice.length * slice_open;
     }
     return open > 0.0f ? std::pow(std::clamp(visible / open, 0.0f, 1.0f), settings.intensity)
                        : 1.0f;
@@ -155,8 +166,13 @@ double corner_visibility(double distance, double radius) {
     if (t >= 1.0) return 1.0;
     // Malley: cosine-weighted directions are the unit disk's uniform points
     // lifted to the hemisphere; a direction hits the wall (x = d) within r
-    // iff its disk point has x > d / r, a circular segment of the disk.
-    return 1.0 - (std::acos(t) - t * std::sqrt(1.0 - t * t)) / std::numbers::pi;
+    // iff its disk point (u, v) has u > t = d / r, a circular segment of the
+    // disk, and it hits at distance d / u, where the falloff is 1 - t^2 / u^2.
+    // The occlusion is (1 / pi) times the integral over the segment,
+    //   int_t^1 2 sqrt(1 - u^2) (1 - t^2 / u^2) du
+    //     = (1 + 2 t^2) acos t - 3 t sqrt(1 - t^2).
+    return 1.0 - ((1.0 + 2.0 * t * t) * std::acos(t) - 3.0 * t * std::sqrt(1.0 - t * t)) /
+                     std::numbers::pi;
 }
 
 }  // namespace deepgi::test

@@ -16,10 +16,11 @@ namespace deepgi::test {
 // pyramid (both layers' linear depths) and the layer-0 normals.
 FloatImage reference_slice_visibility(const SaoInputs& inputs, const AoSettings& settings);
 
-// The closed form the corner test holds both to: the cosine-weighted share
-// of the hemisphere of a point on a floor, at distance d from an unbounded
-// perpendicular wall, that no wall point within the radius r hides,
-//   V(t) = 1 - (acos t - t sqrt(1 - t^2)) / pi,  t = d / r (1 for t >= 1).
+// The closed form the corner test holds both to: the ambient visibility, with
+// the reference's falloff f(d) = 1 - d^2 / r^2, of a point on a floor at
+// distance d from an unbounded perpendicular wall,
+//   V(t) = 1 - ((1 + 2 t^2) acos t - 3 t sqrt(1 - t^2)) / pi,
+// t = d / r (1 for t >= 1).
 double corner_visibility(double distance, double radius);
 
 }  // namespace deepgi::test

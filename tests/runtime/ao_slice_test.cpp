@@ -111,15 +111,18 @@ TEST_CASE("ao slices: an open plane has visibility 1", "[slices]") {
 }
 
 // The floor at distance d from the wall, radius r: V(d / r) of
-// corner_visibility(). Both estimators are exact for this geometry in the
-// limit of many slices and steps (in every slice the wall's points within r
-// hide exactly the directions below the highest of them), the bitmask where
+// corner_visibility(), with the reference's falloff. Both estimators tend to
+// it with many slices and steps (in every slice the wall's points within r
+// hide the directions below the highest of them, and each rise of the
+// horizon is first hit near the sample that raised it), the bitmask where
 // its thickness reaches past the radius. What is left: the slices' angles
 // sample the integral over the slice angle (two per pixel, so each pixel is
 // noisy; the mean over a column of 40 pixels at one d is not), the highest
-// sample lies up to one step below the wall's top within r, and the bitmask
-// rounds each horizon to a sector centre. Bound: 0.04 on a column's mean
-// (measured worst below, in the INFO line).
+// sample lies up to one step below the wall's top within r, a rise counts
+// with the falloff of the sample at its top, up to one step farther than
+// where its lowest directions meet the wall, and the bitmask rounds each
+// horizon to a sector centre. Bound: 0.04 on a column's mean (measured
+// worst below, in the INFO line).
 TEST_CASE("ao slices: the inside corner of two planes matches its closed form", "[slices]") {
     const float wall = 0.4f;
     for (AoMethod method : {AoMethod::gtao, AoMethod::bitmask}) {
