@@ -4,9 +4,10 @@
 // truth's mean, and the published normalisation must not. The truth is an
 // independent Monte Carlo integral of the definition in reference.hpp;
 // nothing here is a value recorded from the shader. Also atrium's banners,
-// which a second layer should let tint the floor before them (a target, 2
-// layers against 1, with the misses in the targets table), and which must
-// move the tint the way the ray-traced visible truth moves it (a check).
+// which a second layer should let tint the floor and the columns before them
+// (a target, 2 layers against 1, with the misses in the targets table), and
+// which must move the tint the way the ray-traced visible truth moves it (a
+// check).
 #include "deepgi/context.hpp"
 #include "deepgi/reference.hpp"
 #include "deepgi/renderer.hpp"
@@ -138,8 +139,8 @@ spiral::test::TargetTable& targets() {
          {"area/ref-board, lengths auto/relative abs(bias)/64 frames", {0.406, "measured 0.369"}},
          {"area/ref-board, lengths auto/relative MAE/64 frames", {0.409, "measured 0.372"}},
          // The blue banner (x = -4, seen obliquely): with two layers the
-         // floor before it turns away from blue (tint 1 layer 0.078, 2
-         // layers -0.005 at 192x108), and so does the ray-traced visible
+         // floor before it turns away from blue (tint 1 layer 0.062, 2
+         // layers -0.009 at 192x108), and so does the ray-traced visible
          // truth (E0 0.086, E0 + E1 -0.069): what layer 1 holds there
          // lights that floor with colours away from blue. The target asks
          // what the truth does not; the hard check below follows the truth.
@@ -152,7 +153,16 @@ spiral::test::TargetTable& targets() {
          // R2 sequence; with the Sobol sequence it meets the target after 8
          // frames and leans away by 4e-4 after 64: the truth itself moves by
          // 0.001 there, so red's target is at the level of noise too.)
-         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0007"}}});
+         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0007"}},
+         // The columns' sides: before the blue and the magenta banners the
+         // side the camera sees turns away from the banner with two layers,
+         // as the visible truth does (E0 -0.078 to E0 + E1 -0.165 before
+         // blue, -0.003 to -0.054 before magenta; the renderer -0.081 to
+         // -0.153 and -0.032 to -0.061): what layer 1 adds there is mostly
+         // the other banners and the stone, not the strip of banner beside
+         // the column. Yellow and red meet the target.
+         {"atrium/banner 0/column tint, 1 layer - 2 layers/8 frames", {0.080, "measured 0.0724"}},
+         {"atrium/banner 3/column tint, 1 layer - 2 layers/8 frames", {0.032, "measured 0.0289"}}});
     return table;
 }
 
@@ -252,19 +262,36 @@ constexpr glm::vec3 far_banners[] = {{0.05f, 0.12f, 0.80f},
                                      {0.72f, 0.05f, 0.62f},
                                      {0.80f, 0.04f, 0.04f}};
 
-// Which banner's floor pixel (x, y) of layer 0 lies on: the floor in front
-// of banner i (within its width, from the banner to 2.3 m before it), or -1.
-// `point` receives the world position.
-int banner_floor(const FloatImage& depth, int x, int y, const Camera& camera,
-                 const RenderSettings& settings, glm::vec3& point) {
+// Where the tint is read: the floor in front of banner i (within its width,
+// from the banner to 2.3 m before it), or the side faces of the column in
+// front of it (half as wide as the banner, so a side looks past the column
+// at the strip of banner beside it), over the banner's height. The camera
+// at x = 0 sees the +x side of the columns left of it and the -x side of
+// those right of it; it sees neither side of the middle column.
+enum class BannerRegion { floor, column_sides };
+
+// Which banner's region pixel (x, y) of layer 0 lies on, or -1. `point`
+// receives the world position.
+int banner_region(const FloatImage& depth, int x, int y, const Camera& camera,
+                  const RenderSettings& settings, BannerRegion region, glm::vec3& point) {
     const float d = depth.at(x, y);
     if (d <= 0.0f) return -1;
     const glm::mat4 camera_to_world = glm::inverse(camera_view_matrix(camera));
     const glm::vec3 ray = camera_ray_direction(camera, settings, float(x) + 0.5f, float(y) + 0.5f);
     point = glm::vec3(camera_to_world * glm::vec4(ray * d, 1.0f));
-    if (point.y > 0.02f || point.z < -7.25f || point.z > -4.95f) return -1;
     const int i = int(std::lround(point.x / 2.0f)) + 2;
-    if (i < 0 || i > 4 || std::abs(point.x - 2.0f * float(i - 2)) > 0.55f) return -1;
+    if (i < 0 || i > 4) return -1;
+    const float across = std::abs(point.x - 2.0f * float(i - 2));
+    if (region == BannerRegion::floor) {
+        if (point.y > 0.02f || point.z < -7.25f || point.z > -4.95f || across > 0.55f) return -1;
+        return i;
+    }
+    // A side face of the column (0.6 m square, z from -6.3 to -5.7), away
+    // from its edges, where the banner hangs (1.5 m to 4.6 m up; the column
+    // is 4 m tall).
+    if (std::abs(across - 0.3f) > 0.01f || point.z < -6.28f || point.z > -5.72f || point.y < 1.5f ||
+        point.y > 3.98f)
+        return -1;
     return i;
 }
 
@@ -278,16 +305,16 @@ double tint_toward(glm::dvec3 irradiance, int i) {
     return glm::dot(irradiance / total - 1.0 / 3.0, glm::normalize(b - 1.0 / 3.0));
 }
 
-// Mean over the floor in front of banner i of E's tint toward the banner.
+// Mean over banner i's region of E's tint toward the banner.
 std::array<double, 5> banner_tint(const FloatImage& e, const FloatImage& depth,
                                   const Camera& camera, const RenderSettings& settings,
-                                  std::array<int, 5>& counts) {
+                                  BannerRegion region, std::array<int, 5>& counts) {
     std::array<double, 5> sums{};
     counts = {};
     for (int y = 0; y < depth.height; ++y) {
         for (int x = 0; x < depth.width; ++x) {
             glm::vec3 point;
-            const int i = banner_floor(depth, x, y, camera, settings, point);
+            const int i = banner_region(depth, x, y, camera, settings, region, point);
             if (i < 0) continue;
             const glm::dvec3 irradiance(e.at(x, y, 0), e.at(x, y, 1), e.at(x, y, 2));
             if (!(irradiance.x + irradiance.y + irradiance.z > 0.0)) continue;
@@ -300,13 +327,13 @@ std::array<double, 5> banner_tint(const FloatImage& e, const FloatImage& depth,
 }
 
 // The same mean for the ray-traced visible truth: E0 (what one layer can
-// find) and E0 + E1 (two layers), irradiance_at() on every floor pixel
-// before a banner (reference.hpp), 1024 directions each.
+// find) and E0 + E1 (two layers), irradiance_at() on every pixel of the
+// region (reference.hpp), 1024 directions each.
 struct VisibleTint {
     std::array<double, 5> one_layer{}, two_layers{};
 };
 VisibleTint banner_visible_tint(const Scene& scene, const FloatImage& depth,
-                                const RenderSettings& settings) {
+                                const RenderSettings& settings, BannerRegion region) {
     const RayScene rays(scene);
     const LayerClassifier classify = layer_classifier(rays, scene.default_camera, settings);
     const glm::vec3 eye = glm::vec3(glm::inverse(camera_view_matrix(scene.default_camera))[3]);
@@ -317,7 +344,7 @@ VisibleTint banner_visible_tint(const Scene& scene, const FloatImage& depth,
     for (int y = 0; y < depth.height; ++y) {
         for (int x = 0; x < depth.width; ++x) {
             glm::vec3 point;
-            const int i = banner_floor(depth, x, y, scene.default_camera, settings, point);
+            const int i = banner_region(depth, x, y, scene.default_camera, settings, region, point);
             if (i < 0) continue;
             const glm::vec3 direction = point - eye;
             const RayScene::Hit hit = rays.intersect_front(eye, glm::normalize(direction), 0.0f,
@@ -344,59 +371,74 @@ VisibleTint banner_visible_tint(const Scene& scene, const FloatImage& depth,
 
 // The banners of atrium hang behind the columns, so layer 0 holds only
 // their edges; a second layer should add the light of the hidden part to
-// the floor in front of them, which turns toward the banner's colour. The
-// target: for every banner, the floor's tint toward it is higher with two
-// layers than with one. A banner that misses it is listed in the targets
-// table (a regression bound at the measured shortfall keeps it from
-// getting worse). Layer 1 holds more than the banners, so the check that
-// must pass is the truth's: where the ray-traced visible truth's tint moves
-// by at least 0.02 from E0 to E0 + E1, the renderer's moves the same way
-// from one layer to two.
-TEST_CASE("radiosity accuracy: atrium's banners tint the floor before them more with two layers",
-          "[radiosity-accuracy]") {
+// the floor in front of them, and to the sides of the columns, which turn
+// toward the banner's colour. The target: for every banner, each region's
+// tint toward it is higher with two layers than with one. A banner that
+// misses it is listed in the targets table (a regression bound at the
+// measured shortfall keeps it from getting worse). Layer 1 holds more than
+// the banners, so the check that must pass is the truth's: where the
+// ray-traced visible truth's tint moves by at least 0.02 from E0 to E0 +
+// E1, the renderer's moves the same way from one layer to two.
+TEST_CASE(
+    "radiosity accuracy: atrium's banners tint the floor and the columns before them more with two "
+    "layers",
+    "[radiosity-accuracy]") {
     const Scene scene = load_scene("atrium");
     HeadlessContext context;
     const ShaderLoader loader = ShaderLoader::from_build_configuration();
-    std::array<double, 5> tint[2];
-    std::array<int, 5> counts[2];
+    // The scene's lengths: a 1 m radius projects to a few pixels at the
+    // banners.
+    const RenderSettings base = with_scene_lengths(accuracy_settings(RadiosityMethod::area), scene);
+    FloatImage irradiance[2];
     FloatImage depth_layer0;
     for (const int layers : {1, 2}) {
-        // The scene's lengths: a 1 m radius projects to a few pixels at the
-        // banners.
-        RenderSettings settings =
-            with_scene_lengths(accuracy_settings(RadiosityMethod::area), scene);
+        RenderSettings settings = base;
         settings.radiosity.layers = layers;
         Renderer renderer(scene, settings, loader);
         for (int frame = 0; frame < 8; ++frame) renderer.render(scene.default_camera);
         depth_layer0 = renderer.read_pass_output("gbuffer-depth-layer0");
-        tint[layers - 1] =
-            banner_tint(renderer.read_pass_output("radiosity-irradiance-layer0"), depth_layer0,
-                        scene.default_camera, settings, counts[layers - 1]);
+        irradiance[layers - 1] = renderer.read_pass_output("radiosity-irradiance-layer0");
     }
-    // What the layers hold says how the tint should move: the visible
-    // truth's tint with one layer (E0) and with two (E0 + E1).
-    const RenderSettings truth_settings =
-        with_scene_lengths(accuracy_settings(RadiosityMethod::area), scene);
-    const VisibleTint truth = banner_visible_tint(scene, depth_layer0, truth_settings);
-    for (int i = 0; i < 5; ++i) {
-        const auto k = std::size_t(i);
-        INFO("banner " << i << ": " << counts[0][k] << " floor pixels, tint 1 layer " << tint[0][k]
-                       << ", 2 layers " << tint[1][k] << "; visible truth E0 " << truth.one_layer[k]
-                       << ", E0 + E1 " << truth.two_layers[k]);
-        WARN("atrium banner " << i << ": floor tint toward it, 1 layer " << tint[0][k]
-                              << ", 2 layers " << tint[1][k] << " (" << counts[0][k]
-                              << " pixels); visible truth E0 " << truth.one_layer[k] << ", E0 + E1 "
-                              << truth.two_layers[k]);
-        REQUIRE(counts[0][k] > 20);
-        REQUIRE(counts[1][k] > 20);
-        // Where the second layer's light moves the truth's tint clearly, the
-        // renderer's second layer moves it the same way.
-        const double truth_change = truth.two_layers[k] - truth.one_layer[k];
-        if (std::abs(truth_change) >= 0.02) CHECK((tint[1][k] - tint[0][k]) * truth_change > 0.0);
-        // Target: two layers tint more, i.e. (1 layer - 2 layers) <= 0.
-        targets().check_at_most(fmt::format("atrium/banner {}", i),
-                                "floor tint, 1 layer - 2 layers", "8 frames",
-                                tint[0][k] - tint[1][k], 0.0);
+    const struct {
+        BannerRegion region;
+        const char* name;
+        int min_pixels;
+    } regions[] = {{BannerRegion::floor, "floor", 20}, {BannerRegion::column_sides, "column", 10}};
+    for (const auto& region : regions) {
+        std::array<double, 5> tint[2];
+        std::array<int, 5> counts[2];
+        for (int l = 0; l < 2; ++l)
+            tint[l] = banner_tint(irradiance[l], depth_layer0, scene.default_camera, base,
+                                  region.region, counts[l]);
+        // What the layers hold says how the tint should move: the visible
+        // truth's tint with one layer (E0) and with two (E0 + E1).
+        const VisibleTint truth = banner_visible_tint(scene, depth_layer0, base, region.region);
+        for (int i = 0; i < 5; ++i) {
+            const auto k = std::size_t(i);
+            INFO(region.name << ", banner " << i << ": " << counts[0][k] << " pixels, tint 1 layer "
+                             << tint[0][k] << ", 2 layers " << tint[1][k] << "; visible truth E0 "
+                             << truth.one_layer[k] << ", E0 + E1 " << truth.two_layers[k]);
+            WARN("atrium banner " << i << ": " << region.name << " tint toward it, 1 layer "
+                                  << tint[0][k] << ", 2 layers " << tint[1][k] << " ("
+                                  << counts[0][k] << " pixels); visible truth E0 "
+                                  << truth.one_layer[k] << ", E0 + E1 " << truth.two_layers[k]);
+            // The camera sees neither side of the middle column (banner 2).
+            if (region.region == BannerRegion::column_sides && i == 2) {
+                CHECK(counts[0][k] == 0);
+                continue;
+            }
+            REQUIRE(counts[0][k] > region.min_pixels);
+            REQUIRE(counts[1][k] > region.min_pixels);
+            // Where the second layer's light moves the truth's tint clearly,
+            // the renderer's second layer moves it the same way.
+            const double truth_change = truth.two_layers[k] - truth.one_layer[k];
+            if (std::abs(truth_change) >= 0.02)
+                CHECK((tint[1][k] - tint[0][k]) * truth_change > 0.0);
+            // Target: two layers tint more, i.e. (1 layer - 2 layers) <= 0.
+            targets().check_at_most(fmt::format("atrium/banner {}", i),
+                                    fmt::format("{} tint, 1 layer - 2 layers", region.name),
+                                    "8 frames", tint[0][k] - tint[1][k], 0.0);
+        }
     }
     targets().write();
 }
