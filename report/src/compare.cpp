@@ -1,5 +1,6 @@
 // The report's comparisons: error statistics of an estimate against its
-// truth over a mask of pixels, and the open-surface counts.
+// truth over a mask of pixels, the irradiance truths, and the open-surface
+// counts.
 #include "compare.hpp"
 
 #include <fmt/format.h>
@@ -24,6 +25,21 @@ bool is_open(const FloatImage& truth, std::size_t i) {
 FloatImage clamped_visibility(FloatImage image) {
     for (float& v : image.pixels) v = std::clamp(v, 0.0f, 1.0f);
     return image;
+}
+
+std::optional<FloatImage> reference_irradiance(const ReferenceImages& images) {
+    if (images.irradiance.pixels.empty()) return std::nullopt;
+    return images.irradiance;
+}
+
+std::optional<FloatImage> visible_irradiance(const ReferenceImages& images, int layers) {
+    if (images.irradiance_layer0.pixels.empty()) return std::nullopt;
+    FloatImage visible = images.irradiance_layer0;
+    if (layers > 1) {
+        for (std::size_t i = 0; i < visible.pixels.size(); ++i)
+            visible.pixels[i] += images.irradiance_layer1.pixels[i];
+    }
+    return visible;
 }
 
 double masked_mean(const FloatImage& image, const std::vector<std::uint8_t>& mask) {

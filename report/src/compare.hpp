@@ -3,9 +3,11 @@
 // library: masks of the pixels compared, means, relative errors and the
 // open-surface counts (the public compare_images is in deepgi/report.hpp).
 #include "deepgi/image_io.hpp"
+#include "deepgi/reference.hpp"
 #include "deepgi/report.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace deepgi::report {
@@ -27,6 +29,16 @@ std::vector<std::uint8_t> viewport_mask(int width, int height, int guard, Keep k
     }
     return mask;
 }
+
+// The ray-traced one-bounce irradiance that the radiosity gather estimates
+// (viewport layout as ambient_visibility); empty when it was not traced.
+std::optional<FloatImage> reference_irradiance(const ReferenceImages& images);
+
+// The visible truth of `layers` G-buffer layers: the part of that irradiance
+// whose source surface layer 0 holds, plus layer 1's with two layers
+// (ReferenceImages), the most a gather over those layers can find
+// (docs/radiosity.md, "Against the light the layers hold").
+std::optional<FloatImage> visible_irradiance(const ReferenceImages& images, int layers);
 
 // The mean of `image` over the mask.
 double masked_mean(const FloatImage& image, const std::vector<std::uint8_t>& mask);

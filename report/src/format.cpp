@@ -64,6 +64,13 @@ const std::vector<std::string>& value_columns() {
                  "rad_ref_accum_rel_mae",
                  "rad_ref_accum_rel_rmse",
                  "rad_ref_accum_rel_bias",
+                 "rad_vis_blur_rel_mae",
+                 "rad_vis_blur_rel_rmse",
+                 "rad_vis_blur_rel_bias",
+                 "rad_vis_accum_rel_mae",
+                 "rad_vis_accum_rel_rmse",
+                 "rad_vis_accum_rel_bias",
+                 "rad_unheld_share",
              })
             names.push_back(name);
         return names;
@@ -123,11 +130,13 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
     text += fmt::format(
         "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
         "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
-        "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"seconds\":{}",
+        "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"ao_radius\":{},"
+        "\"radiosity_radius\":{},\"seconds\":{}",
         json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
-        json_string(info.image_pattern), info.image_taps, info.repeats, info.seconds);
+        json_string(info.image_pattern), info.image_taps, info.repeats, json_number(info.ao_radius),
+        json_number(info.radiosity_radius), info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];

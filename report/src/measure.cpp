@@ -167,6 +167,8 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.image_pattern = image_pattern;
     result.info.image_taps = image_taps;
     result.info.repeats = options.repeats;
+    result.info.ao_radius = settings.ao.radius;
+    result.info.radiosity_radius = settings.radiosity.radius;
 
     // Progress: one step per scene, then the side tables that run.
     const int steps =

@@ -46,13 +46,6 @@ constexpr const char* kTemporalIrradianceOutput = "radiosity-irradiance-layer0";
 // converges to. Nine, as when the rotation ran through a cycle of eight.
 constexpr int kAccumulatedFrames = 9;
 
-// The ray-traced one-bounce irradiance that the radiosity gather estimates
-// (viewport layout as ambient_visibility); empty when it was not traced.
-std::optional<FloatImage> reference_irradiance(const ReferenceImages& images) {
-    if (images.irradiance.pixels.empty()) return std::nullopt;
-    return images.irradiance;
-}
-
 double median(std::vector<double> values) {
     if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
     std::sort(values.begin(), values.end());
@@ -125,7 +118,8 @@ ReferenceSettings reference_settings(const ReportOptions& options, const RenderS
 // and the errors of what the temporal filters accumulated over them.
 struct StaticFrames {
     std::map<std::string, std::vector<double>> samples;
-    std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal, rad_ref_accum;
+    std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal, rad_ref_accum,
+        rad_vis_accum;
     std::optional<double> open_accum, open_core_accum;
 };
 
@@ -136,7 +130,8 @@ StaticFrames run_static_frames(
     Renderer& renderer, const Camera& camera, const ReportOptions& options,
     const FloatImage& truth_visibility, const std::vector<std::uint8_t>& agreed,
     const std::vector<std::uint8_t>& open_pixels, const std::vector<std::uint8_t>& blur_open_region,
-    const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_irradiance) {
+    const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_irradiance,
+    const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_visible) {
     StaticFrames after;
     const int timed_end = options.warmup + options.frames;
     for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
@@ -158,7 +153,9 @@ StaticFrames run_static_frames(
             after.rad_ref_temporal =
                 against_irradiance(renderer.read_pass_output(kTemporalIrradianceOutput));
         }
-        after.rad_ref_accum = against_irradiance(renderer.read_pass_output("radiosity-blurred"));
+        const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
+        after.rad_ref_accum = against_irradiance(irradiance);
+        after.rad_vis_accum = against_visible(irradiance);
     }
     return after;
 }
@@ -173,7 +170,9 @@ struct Measured {
     bool gathers_taps = true;             // false: no converged AO to compare with
     ErrorStats conv_raw, conv_blur, ref_raw, ref_blur, rad_raw, rad_blur;
     std::optional<ErrorStats> rad_ref_raw, rad_ref_blur;
-    OpenCount open_raw;  // the raw AO over every open pixel
+    std::optional<ErrorStats> rad_vis_blur;  // against what the row's layers hold
+    std::optional<double> rad_unheld_share;  // of the truth's mean, held by no layer
+    OpenCount open_raw;                      // the raw AO over every open pixel
     long long open_blur_below = 0;
     long long open_core_raw_below = 0;
     long long open_core_blur_below = 0;
@@ -239,6 +238,9 @@ Row make_row(Row row, const Measured& m) {
     add_stats("rad_ref_blur_rel", m.rad_ref_blur);
     add_stats("rad_ref_temporal_rel", after.rad_ref_temporal);
     add_stats("rad_ref_accum_rel", after.rad_ref_accum);
+    add_stats("rad_vis_blur_rel", m.rad_vis_blur);
+    add_stats("rad_vis_accum_rel", after.rad_vis_accum);
+    add("rad_unheld_share", m.rad_unheld_share);
     return row;
 }
 
@@ -266,6 +268,8 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
     const RayScene rays(scene);
     const ReferenceImages truth = render_reference(rays, camera, reference);
     const std::optional<FloatImage> truth_irradiance = reference_irradiance(truth);
+    std::map<int, std::optional<FloatImage>> truth_visible;
+    for (int layers : options.layers) truth_visible[layers] = visible_irradiance(truth, layers);
     // Open pixels: all of them, and those the target counts before and
     // after the blur. They depend on the truth alone.
     const auto open_pixels = open_region(truth.ambient_visibility, 0);
@@ -400,6 +404,13 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
                         return relative(compare_images(estimate, *truth_irradiance, agreed),
                                         truth_irradiance_mean);
                     };
+                    const std::optional<FloatImage>& visible = truth_visible.at(layers);
+                    const double visible_mean = visible ? masked_mean(*visible, agreed) : 0.0;
+                    auto against_visible =
+                        [&](const FloatImage& estimate) -> std::optional<ErrorStats> {
+                        if (!visible) return std::nullopt;
+                        return relative(compare_images(estimate, *visible, agreed), visible_mean);
+                    };
                     const std::optional<ErrorStats> rad_ref_raw =
                         against_irradiance(frame.radiosity_raw);
                     const std::optional<ErrorStats> rad_ref_blur =
@@ -431,15 +442,20 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
                         .rad_blur = rad_blur,
                         .rad_ref_raw = rad_ref_raw,
                         .rad_ref_blur = rad_ref_blur,
+                        .rad_vis_blur = against_visible(frame.radiosity_blurred),
+                        .rad_unheld_share =
+                            visible && truth_irradiance_mean > 0.0
+                                ? std::optional<double>(1.0 - visible_mean / truth_irradiance_mean)
+                                : std::nullopt,
                         .open_raw = count_open(frame.ao_raw, agreed, open_pixels),
                         .open_blur_below = count_open(frame.ao_blurred, agreed, open_pixels).below,
                         .open_core_raw_below =
                             count_open(frame.ao_raw, agreed, raw_open_region).below,
                         .open_core_blur_below =
                             count_open(frame.ao_blurred, agreed, blur_open_region).below,
-                        .after = run_static_frames(renderer, camera, options,
-                                                   truth.ambient_visibility, agreed, open_pixels,
-                                                   blur_open_region, against_irradiance)};
+                        .after = run_static_frames(
+                            renderer, camera, options, truth.ambient_visibility, agreed,
+                            open_pixels, blur_open_region, against_irradiance, against_visible)};
                     Row row = make_row(Row{.scene = scene_name,
                                            .pattern = pattern,
                                            .taps = n,

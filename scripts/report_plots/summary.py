@@ -4,6 +4,7 @@ replaced by what it cannot conclude and why; a difference within the run's
 own noise (noise.py) is called "within the noise", never a win."""
 import os
 
+from .radiosity import radiosity_section
 from .reflections import reflection_section
 from .ties import tie_section
 from .data import (METHOD_LABELS, PATTERN_LABELS, STUDY_TAPS, Table, atomic_write_text, fmt,
@@ -455,6 +456,7 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
     add("")
 
     estimator_section(all_rows or rows, info, add)
+    radiosity_section(all_rows or rows, info, add)
     if extra:
         extra(add)  # sections drawn from more than these rows (estimators.py)
     stability_section(directory, add)

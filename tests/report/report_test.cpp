@@ -211,6 +211,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     std::map<int, std::vector<double>> sampling_error;
     // Each stage's error against the ray-traced truth, summed over the rows.
     std::map<std::string, double> stage_error;
+    // The share of the truth no layer holds, per layer count (the same
+    // truth in every row).
+    std::map<int, std::set<double>> unheld_share;
     // ref_open_blur_below of each method's image row (optimal, 4 taps, two layers).
     std::map<std::string, double> open_blur_below;
     int rows = 0;
@@ -282,7 +285,30 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
             CHECK(error >= 0.0);
             stage_error[stage] += error;
         }
+        // Radiosity against the visible truth V, part of the whole truth W
+        // (every part of the split is non-negative): the share s = 1 -
+        // mean V / mean W lies in [0, 1), and the relative biases of one
+        // estimate E against both are tied by (E - V) / V = (b_W + s) / (1 - s),
+        // with b_W = (E - W) / W; a mask or a mean taken apart would break it.
+        const double share = std::stod(fields[column.at("rad_unheld_share")]);
+        CHECK(share >= 0.0);
+        CHECK(share < 1.0);
+        unheld_share[std::stoi(fields[3])].insert(share);
+        for (const char* stage : {"blur", "accum"}) {
+            INFO(stage);
+            const double whole =
+                std::stod(fields[column.at(fmt::format("rad_ref_{}_rel_bias", stage))]);
+            const double visible =
+                std::stod(fields[column.at(fmt::format("rad_vis_{}_rel_bias", stage))]);
+            CHECK(visible == Approx((whole + share) / (1.0 - share)).margin(1e-6));
+            CHECK(std::stod(fields[column.at(fmt::format("rad_vis_{}_rel_mae", stage))]) >= 0.0);
+        }
     }
+    // One truth per layer count, and a second layer holds at least what the
+    // first does.
+    REQUIRE(unheld_share[1].size() == 1);
+    REQUIRE(unheld_share[2].size() == 1);
+    CHECK(*unheld_share[2].begin() <= *unheld_share[1].begin());
     // Nine frames of a still camera average nine rotations, so
     // the temporal filters' history is nearer the truth than a first frame's
     // raw gather, for AO and for radiosity alike.
@@ -319,6 +345,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     CHECK(json_rows == 20);
     CHECK(count_of(json, "\"device\":") == 20);
     CHECK(json.find("\"repeats\":2,") != std::string::npos);
+    // The lengths every row rendered at: the library's defaults.
+    CHECK(json.find(fmt::format("\"radiosity_radius\":{},",
+                                deepgi::RenderSettings{}.radiosity.radius)) != std::string::npos);
     // Four rows of the march, and its half of the stability rows (checked below).
     const std::string rows_json = json.substr(0, json.find("\"stability\":"));
     CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 4);

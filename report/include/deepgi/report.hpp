@@ -153,6 +153,9 @@ struct ReportInfo {
     std::string image_pattern;
     int image_taps = 0;
     int repeats = 1;  // renders of every row, each with its own temporal offset and rotation seed
+    // The lengths every row renders at (RenderSettings' defaults, metres):
+    // the AO and radiosity radii the truths are traced with too.
+    double ao_radius = 0.0, radiosity_radius = 0.0;
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the

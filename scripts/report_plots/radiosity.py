@@ -1,0 +1,77 @@
+"""The summary's per-scene radiosity section: the blurred layer-0 irradiance
+against the whole ray-traced truth and against the visible truth (the light
+whose source a G-buffer layer of the row holds), and the share of the truth
+no layer holds (docs/radiosity.md, "Against the light the layers hold")."""
+from .data import Table, fmt
+
+# The one-bounce targets of docs/radiosity.md against the visible truth.
+TARGET_MAE = 0.10
+TARGET_BIAS = 0.05
+# The renderer's default radiosity tap count (the CMake option
+# RADIOSITY_TAPS): the section shows the run's tap count nearest it.
+DEFAULT_TAPS = 19
+
+
+def _signed(value):
+    return "-" if value is None else f"{value:+.3f}"
+
+
+def radiosity_section(rows, info, add):
+    rows = [r for r in rows if r.get("rad_vis_accum_rel_mae") is not None]
+    if not rows:
+        return
+    # Radiosity does not depend on the AO method: one method's rows.
+    method = rows[0]["ao_method"]
+    patterns = list(dict.fromkeys(r["pattern"] for r in rows if r["ao_method"] == method))
+    pattern = "optimal" if "optimal" in patterns else patterns[0]
+    rows = [r for r in rows if r["ao_method"] == method and r["pattern"] == pattern]
+    taps = min(sorted({r["taps"] for r in rows}), key=lambda n: abs(n - DEFAULT_TAPS))
+    table = Table(rows)
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    layers = sorted({r["layers"] for r in rows})
+    add("## Radiosity against the whole and the visible truth\n")
+    radius = info.get("radiosity_radius")
+    add(f"The blurred layer-0 irradiance (one bounce, N = {taps}, the pattern {pattern}, "
+        + (f"radius {radius:g} m" if radius else "radius not recorded") + "), "
+        "relative to the truth's mean over the compared pixels, in the first frame after a "
+        "cut and after the still frames of a rotation cycle, means over the repeats. The "
+        "whole truth is the ray-traced one-bounce irradiance; the visible truth is its part "
+        "whose source surface a layer of the row holds (layer 0 with one layer, layers 0 and "
+        "1 with two), the most the gather can find. 'No layer holds': the share of the whole "
+        "truth's mean that is not visible. Targets against the visible truth: relative MAE "
+        f"<= {TARGET_MAE:.2f} and |bias| <= {TARGET_BIAS:.2f} (docs/radiosity.md); a few "
+        "still frames keep some of the gather's noise in the MAE, which the documents' "
+        "figures average over more frames.\n")
+    add("| scene | layers | no layer holds | whole, first frame | whole, after the cycle "
+        "| visible, first frame | visible, after the cycle | targets (visible, after the "
+        "cycle) |")
+    add("|:--|--:|--:|--:|--:|--:|--:|:--|")
+    met, missed = [], []
+    for scene in scenes:
+        for layer in layers:
+            def value(column):
+                return table.value(column, taps=taps, layers=layer, scene=scene)
+
+            def pair(stage):
+                return f"{fmt(value(stage + '_mae'), 3)} / {_signed(value(stage + '_bias'))}"
+
+            mae, bias = value("rad_vis_accum_rel_mae"), value("rad_vis_accum_rel_bias")
+            fails = []
+            if mae is not None and mae > TARGET_MAE:
+                fails.append("MAE")
+            if bias is not None and abs(bias) > TARGET_BIAS:
+                fails.append("bias")
+            verdict = "met" if not fails else "missed (" + ", ".join(fails) + ")"
+            (missed if fails else met).append(f"{scene} ({layer})")
+            share = value("rad_unheld_share")
+            add(f"| {scene} | {layer} | {fmt(share, 3)} | {pair('rad_ref_blur_rel')} | "
+                f"{pair('rad_ref_accum_rel')} | {pair('rad_vis_blur_rel')} | "
+                f"{pair('rad_vis_accum_rel')} | {verdict} |")
+    add("")
+    parts = []
+    if met:
+        parts.append("met on " + ", ".join(met))
+    if missed:
+        parts.append("missed on " + ", ".join(missed))
+    add("Each cell is MAE / bias. Against the visible truth after the cycle the targets are "
+        + " and ".join(parts) + " (scene (layers)).\n")
