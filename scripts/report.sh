@@ -5,7 +5,9 @@
 # docs/results.md with the run's summary.md.
 # usage: scripts/report.sh [BUILD_DIR] [--quick] [extra `deepgi report` flags]
 # Extra flags override the defaults (CLI11 keeps the last value given; a list
-# given again adds to the configuration's). --quick runs a smaller
+# given again adds to the configuration's); a path among them is relative to
+# the source tree, where the report runs. docs/figures/report/tie-verdicts.csv,
+# when present, is passed as --ties-from. --quick runs a smaller
 # configuration, four scenes, four tap counts, four patterns and two layers
 # at 160x90, for a 2-core machine's time budget: its block in
 # docs/results.md names the flags it ran, and its summary concludes only what
@@ -27,6 +29,15 @@ esac
 quick=0
 if [ "${1:-}" = "--quick" ]; then quick=1; shift; fi
 cmake --build "$build" --target deepgi
+# Run from the source tree, so that the flags docs/results.md prints name
+# its files by relative paths.
+build=$(cd "$build" && pwd)
+cd "$root"
+# The tie verdicts of tie_error_study (docs/optimizer.md, "Ties"), kept with
+# the report's data: the summary then says how the picked ties sample.
+verdicts=docs/figures/report/tie-verdicts.csv
+ties=""
+if [ -f "$verdicts" ]; then ties="--ties-from $verdicts"; fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT INT TERM
 if [ $quick = 1 ]; then
@@ -34,13 +45,13 @@ if [ $quick = 1 ]; then
     --taps 8,11,16,32 --patterns optimal,tau1,golden,m4 --layers 1,2 \
     --ao-methods solid-angle,published,march,gtao,bitmask,spiral-thick --slice-costs 1x4,2x8 \
     --size 160x90 --rays 0 --frames 7 --warmup 1 --repeats 2 --flicker-frames 8 \
-    --reflection-steps 16,32 --stability --float-check "$@"
+    --reflection-steps 16,32 --stability --float-check $ties "$@"
 else
   set -- --scenes ref-crease,ref-slab,ref-board,ref-bench,cornell,atrium,warehouse,gallery \
     --taps 4,8,11,16,32,64 --patterns optimal,tau1,golden,m2,m4,m8 --layers 1,2 \
     --ao-methods solid-angle,published,march,gtao,bitmask,spiral-thick --slice-costs 1x4,2x8,4x8 \
     --size 320x180 --rays 0 --frames 7 --warmup 1 --repeats 2 \
-    --stability --float-check "$@"
+    --stability --float-check $ties "$@"
 fi
 start=$(date +%s)
 "$build/apps/deepgi/deepgi" report "$@" --output "$work/report"
