@@ -56,10 +56,12 @@ def radiosity_section(rows, info, add):
                 return f"{fmt(value(stage + '_mae'), 3)} / {_signed(value(stage + '_bias'))}"
 
             mae, bias = value("rad_vis_accum_rel_mae"), value("rad_vis_accum_rel_bias")
+            if mae is None or bias is None:
+                continue  # this layer count did not run on this scene
             fails = []
-            if mae is not None and mae > TARGET_MAE:
+            if mae > TARGET_MAE:
                 fails.append("MAE")
-            if bias is not None and abs(bias) > TARGET_BIAS:
+            if abs(bias) > TARGET_BIAS:
                 fails.append("bias")
             verdict = "met" if not fails else "missed (" + ", ".join(fails) + ")"
             (missed if fails else met).append(f"{scene} ({layer})")
