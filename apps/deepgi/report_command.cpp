@@ -160,6 +160,13 @@ int run_report_command(int argc, char** argv) {
                    "Renders of every row, each with the temporal sequence started elsewhere; "
                    "their spread is the run's noise, and no difference within it is ranked")
         ->default_str(fmt::format("{} renders", report.repeats));
+    std::string lengths = "library";
+    app.add_option("--lengths", lengths,
+                   "library: every length at the library's metres (AO radius 0.5, radiosity "
+                   "radius 1); auto: at the command line's defaults, a fraction of each "
+                   "scene's size")
+        ->check(CLI::IsMember({"library", "auto"}))
+        ->default_str("library");
     app.add_flag("--stability", report.stability,
                  "Also render the numerical hard cases (stability.csv); off unless given");
     app.add_flag("--float-check", report.float_check,
@@ -194,6 +201,7 @@ int run_report_command(int argc, char** argv) {
     if (const auto status = parse_command_line(app, argc - 1, argv + 1, "deepgi report"))
         return *status;
     report.reflections.enabled = !options.no_reflections;
+    report.scene_lengths = lengths == "auto";
     options.plots = !options.no_plots;
     return run_reporting_errors("deepgi report", [&] {
         if (float_max_n->count() > 0 && !report.float_check)

@@ -71,6 +71,8 @@ const std::vector<std::string>& value_columns() {
                  "rad_vis_accum_rel_rmse",
                  "rad_vis_accum_rel_bias",
                  "rad_unheld_share",
+                 "ao_radius",
+                 "radiosity_radius",
              })
             names.push_back(name);
         return names;
@@ -130,13 +132,13 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
     text += fmt::format(
         "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
         "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
-        "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"ao_radius\":{},"
-        "\"radiosity_radius\":{},\"seconds\":{}",
+        "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"lengths\":{},"
+        "\"seconds\":{}",
         json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
-        json_string(info.image_pattern), info.image_taps, info.repeats, json_number(info.ao_radius),
-        json_number(info.radiosity_radius), info.seconds);
+        json_string(info.image_pattern), info.image_taps, info.repeats, json_string(info.lengths),
+        info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];

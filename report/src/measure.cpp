@@ -167,8 +167,7 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.image_pattern = image_pattern;
     result.info.image_taps = image_taps;
     result.info.repeats = options.repeats;
-    result.info.ao_radius = settings.ao.radius;
-    result.info.radiosity_radius = settings.radiosity.radius;
+    result.info.lengths = options.scene_lengths ? "auto" : "library";
 
     // Progress: one step per scene, then the side tables that run.
     const int steps =
@@ -181,10 +180,15 @@ ReportResult run_report(const ReportOptions& options) {
     for (const std::string& scene_name : options.scenes) {
         step("scene " + scene_name);
         const Scene scene = load_scene(scene_name);
+        // The lengths in metres every part of the row uses, the truths' too.
+        const RenderSettings scene_settings =
+            options.scene_lengths
+                ? resolve_auto_lengths(with_auto_lengths(settings), scene_scale(scene))
+                : settings;
         const SceneSetup setup{
             .scene = scene,
             .scene_name = scene_name,
-            .settings = settings,
+            .settings = scene_settings,
             .loader = loader,
             .write_headers = [&](const std::string& pattern,
                                  int n) { write_headers(headers.path(), pattern, n); },
@@ -196,8 +200,8 @@ ReportResult run_report(const ReportOptions& options) {
         measure_scene_rows(setup, options, result, log);
         measure_flicker_rows(setup, options, result.flicker, log);
         for (ReflectionRow& row : measure_reflection_rows(
-                 scene_name, scene, settings, options.reflections, options.layers, options.rays,
-                 options.seed, options.threads, options.warmup, options.log))
+                 scene_name, scene, scene_settings, options.reflections, options.layers,
+                 options.rays, options.seed, options.threads, options.warmup, options.log))
             result.reflections.push_back(std::move(row));
     }
 

@@ -176,6 +176,7 @@ struct Measured {
     long long open_blur_below = 0;
     long long open_core_raw_below = 0;
     long long open_core_blur_below = 0;
+    double ao_radius = 0.0, radiosity_radius = 0.0;  // the row's lengths (scene units)
     StaticFrames after;
 };
 
@@ -241,6 +242,8 @@ Row make_row(Row row, const Measured& m) {
     add_stats("rad_vis_blur_rel", m.rad_vis_blur);
     add_stats("rad_vis_accum_rel", after.rad_vis_accum);
     add("rad_unheld_share", m.rad_unheld_share);
+    add("ao_radius", m.ao_radius);
+    add("radiosity_radius", m.radiosity_radius);
     return row;
 }
 
@@ -453,6 +456,8 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
                             count_open(frame.ao_raw, agreed, raw_open_region).below,
                         .open_core_blur_below =
                             count_open(frame.ao_blurred, agreed, blur_open_region).below,
+                        .ao_radius = repeat_settings.ao.radius,
+                        .radiosity_radius = repeat_settings.radiosity.radius,
                         .after = run_static_frames(
                             renderer, camera, options, truth.ambient_visibility, agreed,
                             open_pixels, blur_open_region, against_irradiance, against_visible)};

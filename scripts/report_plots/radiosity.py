@@ -16,7 +16,7 @@ def _signed(value):
     return "-" if value is None else f"{value:+.3f}"
 
 
-def radiosity_section(rows, info, add):
+def radiosity_section(rows, add):
     rows = [r for r in rows if r.get("rad_vis_accum_rel_mae") is not None]
     if not rows:
         return
@@ -30,9 +30,8 @@ def radiosity_section(rows, info, add):
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     layers = sorted({r["layers"] for r in rows})
     add("## Radiosity against the whole and the visible truth\n")
-    radius = info.get("radiosity_radius")
-    add(f"The blurred layer-0 irradiance (one bounce, N = {taps}, the pattern {pattern}, "
-        + (f"radius {radius:g} m" if radius else "radius not recorded") + "), "
+    add(f"The blurred layer-0 irradiance (one bounce, N = {taps}, the pattern {pattern}; "
+        "'radius': the radiosity radius the row and its truth used, in scene units), "
         "relative to the truth's mean over the compared pixels, in the first frame after a "
         "cut and after the still frames of a rotation cycle, means over the repeats. The "
         "whole truth is the ray-traced one-bounce irradiance; the visible truth is its part "
@@ -42,10 +41,10 @@ def radiosity_section(rows, info, add):
         f"<= {TARGET_MAE:.2f} and |bias| <= {TARGET_BIAS:.2f} (docs/radiosity.md); a few "
         "still frames keep some of the gather's noise in the MAE, which the documents' "
         "figures average over more frames.\n")
-    add("| scene | layers | no layer holds | whole, first frame | whole, after the cycle "
-        "| visible, first frame | visible, after the cycle | targets (visible, after the "
+    add("| scene | radius | layers | no layer holds | whole, first frame | whole, after the "
+        "cycle | visible, first frame | visible, after the cycle | targets (visible, after the "
         "cycle) |")
-    add("|:--|--:|--:|--:|--:|--:|--:|:--|")
+    add("|:--|--:|--:|--:|--:|--:|--:|--:|:--|")
     met, missed = [], []
     for scene in scenes:
         for layer in layers:
@@ -65,8 +64,9 @@ def radiosity_section(rows, info, add):
                 fails.append("bias")
             verdict = "met" if not fails else "missed (" + ", ".join(fails) + ")"
             (missed if fails else met).append(f"{scene} ({layer})")
-            share = value("rad_unheld_share")
-            add(f"| {scene} | {layer} | {fmt(share, 3)} | {pair('rad_ref_blur_rel')} | "
+            share, radius = value("rad_unheld_share"), value("radiosity_radius")
+            add(f"| {scene} | {'-' if radius is None else f'{radius:.3g}'} | {layer} | "
+                f"{fmt(share, 3)} | {pair('rad_ref_blur_rel')} | "
                 f"{pair('rad_ref_accum_rel')} | {pair('rad_vis_blur_rel')} | "
                 f"{pair('rad_vis_accum_rel')} | {verdict} |")
     add("")

@@ -456,7 +456,7 @@ def summary(directory, rows, info, discrepancy_series, images, all_rows=None, ex
     add("")
 
     estimator_section(all_rows or rows, info, add)
-    radiosity_section(all_rows or rows, info, add)
+    radiosity_section(all_rows or rows, add)
     if extra:
         extra(add)  # sections drawn from more than these rows (estimators.py)
     stability_section(directory, add)

@@ -290,6 +290,10 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         // mean V / mean W lies in [0, 1), and the relative biases of one
         // estimate E against both are tied by (E - V) / V = (b_W + s) / (1 - s),
         // with b_W = (E - W) / W; a mask or a mean taken apart would break it.
+        // The lengths every row rendered at: the library's defaults.
+        CHECK(std::stod(fields[column.at("ao_radius")]) == deepgi::RenderSettings{}.ao.radius);
+        CHECK(std::stod(fields[column.at("radiosity_radius")]) ==
+              deepgi::RenderSettings{}.radiosity.radius);
         const double share = std::stod(fields[column.at("rad_unheld_share")]);
         CHECK(share >= 0.0);
         CHECK(share < 1.0);
@@ -345,9 +349,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     CHECK(json_rows == 20);
     CHECK(count_of(json, "\"device\":") == 20);
     CHECK(json.find("\"repeats\":2,") != std::string::npos);
-    // The lengths every row rendered at: the library's defaults.
-    CHECK(json.find(fmt::format("\"radiosity_radius\":{},",
-                                deepgi::RenderSettings{}.radiosity.radius)) != std::string::npos);
+    CHECK(json.find("\"lengths\":\"library\",") != std::string::npos);
     // Four rows of the march, and its half of the stability rows (checked below).
     const std::string rows_json = json.substr(0, json.find("\"stability\":"));
     CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 4);
@@ -495,6 +497,29 @@ TEST_CASE("report: extras run only when asked, and a tiny run says what it canno
     fs::remove_all(output);
 }
 
+TEST_CASE("report: with --lengths auto every row renders at the scene's own lengths",
+          "[report][gl]") {
+    const fs::path output = spiral::test::make_scratch_dir("deepgi-report-lengths");
+    const auto run = spiral::test::run_command(
+        std::string(DEEPGI_EXECUTABLE) +
+        " report --lengths auto --scenes cornell --taps 4 --patterns optimal --layers 1 "
+        "--ao-methods solid-angle --size 96x54 --rays 32 --converged-taps 64 --warmup 0 --frames 1 "
+        "--repeats 1 --no-reflections --no-plots --output '" +
+        output.string() + "'");
+    INFO(run.out << run.err);
+    REQUIRE(run.status == 0);
+    const auto rows = read_csv(output / "report.csv");
+    REQUIRE(rows.size() == 1);
+    // Cornell is a 2 m cube about the origin: bounding radius sqrt(3). The
+    // AO radius is a tenth of it and the radiosity radius 0.6 of it, below
+    // its cap of 0.75 of the smallest extent (docs/deepgi.md, "Scene scale").
+    CHECK(std::stod(rows[0].at("ao_radius")) == Approx(0.1 * std::sqrt(3.0)).epsilon(1e-5));
+    CHECK(std::stod(rows[0].at("radiosity_radius")) == Approx(0.6 * std::sqrt(3.0)).epsilon(1e-5));
+    CHECK(spiral::test::read_file(output / "report.json").find("\"lengths\":\"auto\",") !=
+          std::string::npos);
+    fs::remove_all(output);
+}
+
 TEST_CASE("report: bad options exit 2 with one line and leave no output", "[report]") {
     const fs::path scratch = spiral::test::make_scratch_dir("deepgi-report-cli");
     const fs::path output = scratch / "out";
@@ -508,7 +533,8 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
           std::string("--no-stability"),    // the hard cases are off unless --stability
           std::string("--repeats 0"), std::string("--repeats 17"),
           std::string("--ao-methods horizon"), std::string("--ao-methods march,march"),
-          std::string("--ties-from no-such-verdicts.csv"), std::string("--scenes no-such-scene")}) {
+          std::string("--ties-from no-such-verdicts.csv"), std::string("--scenes no-such-scene"),
+          std::string("--lengths metres")}) {
         const auto run = spiral::test::run_command(
             program + " report " + arguments + " --no-plots --output '" + output.string() + "'");
         INFO(arguments << ": " << run.err);

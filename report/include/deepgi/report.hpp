@@ -153,9 +153,10 @@ struct ReportInfo {
     std::string image_pattern;
     int image_taps = 0;
     int repeats = 1;  // renders of every row, each with its own temporal offset and rotation seed
-    // The lengths every row renders at (RenderSettings' defaults, metres):
-    // the AO and radiosity radii the truths are traced with too.
-    double ao_radius = 0.0, radiosity_radius = 0.0;
+    // "library": every row at RenderSettings' lengths in metres; "auto": at
+    // the command line's, resolved per scene (ReportOptions::scene_lengths).
+    // The rows' ao_radius and radiosity_radius columns hold the values.
+    std::string lengths = "library";
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
@@ -203,6 +204,10 @@ struct ReportOptions {
     // spread between repeats is the run's own noise, which the summary
     // compares every difference it reports with (docs/report.md).
     int repeats = 2;
+    // Every length (radii, thickness, the layers' separation) at `auto`, a
+    // fraction of each scene's size, as the command line renders by default
+    // (docs/deepgi.md, "Scene scale"); false: the library's metres.
+    bool scene_lengths = false;
     // Extras that run only when asked (each adds minutes to a full run):
     // the numerical hard cases (stability.csv), and the exact against the
     // double-precision tau search for n = 1..float_max_n (float_vs_exact.csv;
