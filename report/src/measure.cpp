@@ -180,7 +180,8 @@ ReportResult run_report(const ReportOptions& options) {
     for (const std::string& scene_name : options.scenes) {
         step("scene " + scene_name);
         const Scene scene = load_scene(scene_name);
-        // The lengths in metres every part of the row uses, the truths' too.
+        // The lengths (scene units) every part of the scene's rows uses, the
+        // truths' too.
         const RenderSettings scene_settings =
             options.scene_lengths
                 ? resolve_auto_lengths(with_auto_lengths(settings), scene_scale(scene))

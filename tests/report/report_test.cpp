@@ -76,6 +76,16 @@ std::size_t count_of(const std::string& text, const std::string& what) {
     return count;
 }
 
+// `deepgi report` as a user runs it, on one scene at a tiny size with one
+// pattern, one layer count and the solid angle; `arguments` adds the rest.
+spiral::test::ProcessResult run_tiny_report(const std::string& arguments, const fs::path& output) {
+    return spiral::test::run_command(
+        std::string(DEEPGI_EXECUTABLE) +
+        " report --scenes cornell --patterns optimal --layers 1 --ao-methods solid-angle "
+        "--size 96x54 --rays 32 --converged-taps 64 --warmup 0 --frames 1 --no-plots " +
+        arguments + " --output '" + output.string() + "'");
+}
+
 }  // namespace
 
 TEST_CASE("report: CSV fields with commas and quotes are quoted and read back", "[report]") {
@@ -463,12 +473,7 @@ TEST_CASE("report: extras run only when asked, and a tiny run says what it canno
           "[report][gl]") {
     // The command as a user runs it, with nothing asked beyond the rows.
     const fs::path output = spiral::test::make_scratch_dir("deepgi-report-defaults");
-    const auto run = spiral::test::run_command(
-        std::string(DEEPGI_EXECUTABLE) +
-        " report --scenes cornell --taps 4,8 --patterns optimal --layers 1 --ao-methods "
-        "solid-angle --size 96x54 --rays 32 --converged-taps 64 --warmup 0 --frames 1 "
-        "--no-plots --output '" +
-        output.string() + "'");
+    const auto run = run_tiny_report("--taps 4,8", output);
     INFO(run.out << run.err);
     REQUIRE(run.status == 0);
     CHECK_FALSE(fs::exists(output / "stability.csv"));
@@ -500,12 +505,8 @@ TEST_CASE("report: extras run only when asked, and a tiny run says what it canno
 TEST_CASE("report: with --lengths auto every row renders at the scene's own lengths",
           "[report][gl]") {
     const fs::path output = spiral::test::make_scratch_dir("deepgi-report-lengths");
-    const auto run = spiral::test::run_command(
-        std::string(DEEPGI_EXECUTABLE) +
-        " report --lengths auto --scenes cornell --taps 4 --patterns optimal --layers 1 "
-        "--ao-methods solid-angle --size 96x54 --rays 32 --converged-taps 64 --warmup 0 --frames 1 "
-        "--repeats 1 --no-reflections --no-plots --output '" +
-        output.string() + "'");
+    const auto run =
+        run_tiny_report("--lengths auto --taps 4 --repeats 1 --no-reflections", output);
     INFO(run.out << run.err);
     REQUIRE(run.status == 0);
     const auto rows = read_csv(output / "report.csv");
