@@ -160,6 +160,11 @@ int run_report_command(int argc, char** argv) {
                    "Renders of every row, each with the temporal sequence started elsewhere; "
                    "their spread is the run's noise, and no difference within it is ranked")
         ->default_str(fmt::format("{} renders", report.repeats));
+    app.add_option("--radiosity-frames", report.radiosity_frames,
+                   "Still frames whose running mean of the radiosity the per-scene radiosity "
+                   "section compares with the truths, at the renderer's radiosity tap count "
+                   "(the nearest in --taps); 0: skip, and judge after the 9-frame cycle")
+        ->default_str(fmt::format("{} frames", report.radiosity_frames));
     std::string lengths = "library";
     app.add_option("--lengths", lengths,
                    "library: every length at the library's metres (AO radius 0.5, radiosity "

@@ -70,6 +70,13 @@ const std::vector<std::string>& value_columns() {
                  "rad_vis_accum_rel_mae",
                  "rad_vis_accum_rel_rmse",
                  "rad_vis_accum_rel_bias",
+                 "rad_still_frames",
+                 "rad_ref_still_rel_mae",
+                 "rad_ref_still_rel_rmse",
+                 "rad_ref_still_rel_bias",
+                 "rad_vis_still_rel_mae",
+                 "rad_vis_still_rel_rmse",
+                 "rad_vis_still_rel_bias",
                  "rad_unheld_share",
                  "ao_radius",
                  "radiosity_radius",
@@ -133,12 +140,12 @@ std::string format_json(const std::vector<Row>& rows, const ReportInfo& info,
         "\"renderer\":{},\"vendor\":{},\"timing\":{},\"width\":{},\"height\":{},"
         "\"guard\":{},\"rays\":{},\"converged_taps\":{},\"warmup\":{},\"frames\":{},"
         "\"image_pattern\":{},\"image_taps\":{},\"repeats\":{},\"lengths\":{},"
-        "\"seconds\":{}",
+        "\"radiosity_frames\":{},\"radiosity_taps\":{},\"seconds\":{}",
         json_string(info.renderer), json_string(info.vendor),
         json_string(info.cpu_clock ? "CPU clock around glFinish" : "GL timer queries"), info.width,
         info.height, info.guard, info.rays, info.converged_taps, info.warmup, info.frames,
         json_string(info.image_pattern), info.image_taps, info.repeats, json_string(info.lengths),
-        info.seconds);
+        info.radiosity_frames, info.radiosity_taps, info.seconds);
     text += "},\n\"rows\":[\n";
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Row& row = rows[r];

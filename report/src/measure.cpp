@@ -143,6 +143,9 @@ ReportResult run_report(const ReportOptions& options) {
     ScratchFolder headers;
     const ShaderLoader loader = loader_with_override(headers.path());
     const int image_taps = nearest(options.taps, options.image_taps);
+    // The renderer's default radiosity tap count (the CMake option
+    // RADIOSITY_TAPS), or the run's nearest.
+    const int radiosity_taps = nearest(options.taps, DEEPGI_REPORT_RADIOSITY_TAPS);
     const std::string image_pattern = std::find(options.patterns.begin(), options.patterns.end(),
                                                 options.image_pattern) != options.patterns.end()
                                           ? options.image_pattern
@@ -168,6 +171,8 @@ ReportResult run_report(const ReportOptions& options) {
     result.info.image_taps = image_taps;
     result.info.repeats = options.repeats;
     result.info.lengths = options.scene_lengths ? "auto" : "library";
+    result.info.radiosity_frames = options.radiosity_frames;
+    result.info.radiosity_taps = options.radiosity_frames > 0 ? radiosity_taps : 0;
 
     // Progress: one step per scene, then the side tables that run.
     const int steps =
@@ -197,6 +202,7 @@ ReportResult run_report(const ReportOptions& options) {
             .image_taps = image_taps,
             .image_layers = image_layers,
             .image_cost = image_cost,
+            .radiosity_taps = radiosity_taps,
             .converged_taps = options.converged_taps};
         measure_scene_rows(setup, options, result, log);
         measure_flicker_rows(setup, options, result.flicker, log);

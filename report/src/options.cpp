@@ -63,6 +63,9 @@ void validate(const ReportOptions& options) {
     if (options.float_max_n < 1 || options.float_max_n > 4096)
         throw InputError(
             fmt::format("--float-max-n {} is out of range (1 to 4096)", options.float_max_n));
+    if (options.radiosity_frames < 0 || options.radiosity_frames > 1024)
+        throw InputError(fmt::format("--radiosity-frames {} is out of range (0 to 1024; 0: skip)",
+                                     options.radiosity_frames));
     validate(options.estimators);
     validate(options.reflections);
     validate(options.ties);
@@ -81,13 +84,14 @@ void validate(const ReportOptions& options) {
 
 int repeat_offset(const ReportOptions& options, int repeat) {
     // 9: the static frames after a cut that the accumulated columns need
-    // (kAccumulatedFrames in measure.cpp). Rounded up to a power of two, so
+    // (kAccumulatedFrames in scene_rows.cpp); the radiosity section's still
+    // run renders radiosity_frames. Rounded up to a power of two, so
     // that every repeat starts the Sobol sequence where a run of that many
     // frames is a net again (temporal_sequence.h): repeat r's frames are
     // stratified as repeat 0's are, instead of straddling two runs.
     // At the option limits (16 repeats, 2001 frames: 2048 per repeat) this
     // stays far below limits::max_temporal_offset.
-    const int frames = std::max(9, 1 + options.warmup + options.frames);
+    const int frames = std::max({9, 1 + options.warmup + options.frames, options.radiosity_frames});
     return int(std::bit_ceil(unsigned(frames))) * repeat;
 }
 

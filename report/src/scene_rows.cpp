@@ -121,24 +121,42 @@ struct StaticFrames {
     std::optional<ErrorStats> ref_temporal, ref_accum, rad_ref_temporal, rad_ref_accum,
         rad_vis_accum;
     std::optional<double> open_accum, open_core_accum;
+    // The radiosity section's still run, on the rows that render it.
+    std::optional<double> still_frames;
+    std::optional<ErrorStats> rad_ref_still, rad_vis_still;
 };
 
 // Continuous static frames after the cut: the timed ones (so history-based
 // passes do what they do in an animation), and at least kAccumulatedFrames,
-// after which the accumulated errors are read.
+// after which the accumulated errors are read; with still_frames > 0, as many
+// as that too, after which the radiosity's still errors are read.
 StaticFrames run_static_frames(
-    Renderer& renderer, const Camera& camera, const ReportOptions& options,
+    Renderer& renderer, const Camera& camera, const ReportOptions& options, int still_frames,
     const FloatImage& truth_visibility, const std::vector<std::uint8_t>& agreed,
     const std::vector<std::uint8_t>& open_pixels, const std::vector<std::uint8_t>& blur_open_region,
     const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_irradiance,
     const std::function<std::optional<ErrorStats>(const FloatImage&)>& against_visible) {
     StaticFrames after;
     const int timed_end = options.warmup + options.frames;
-    for (int i = 0; i < std::max(timed_end, kAccumulatedFrames - 1); ++i) {
+    // Frame i of the loop is the (i + 2)-th since the cut.
+    const int last = std::max({timed_end, kAccumulatedFrames - 1, still_frames - 1});
+    if (still_frames == 1) {  // the cut's frame alone
+        const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
+        after.still_frames = 1.0;
+        after.rad_ref_still = against_irradiance(irradiance);
+        after.rad_vis_still = against_visible(irradiance);
+    }
+    for (int i = 0; i < last; ++i) {
         renderer.render(camera);
         if (i >= options.warmup && i < timed_end) {
             for (const auto& timing : renderer.last_timings())
                 after.samples[timing.pass].push_back(timing.milliseconds);
+        }
+        if (still_frames > 1 && i + 2 == still_frames) {
+            const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
+            after.still_frames = double(still_frames);
+            after.rad_ref_still = against_irradiance(irradiance);
+            after.rad_vis_still = against_visible(irradiance);
         }
         if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
         if (has_output(renderer, kTemporalAoOutput)) {
@@ -241,6 +259,9 @@ Row make_row(Row row, const Measured& m) {
     add_stats("rad_ref_accum_rel", after.rad_ref_accum);
     add_stats("rad_vis_blur_rel", m.rad_vis_blur);
     add_stats("rad_vis_accum_rel", after.rad_vis_accum);
+    add("rad_still_frames", after.still_frames);
+    add_stats("rad_ref_still_rel", after.rad_ref_still);
+    add_stats("rad_vis_still_rel", after.rad_vis_still);
     add("rad_unheld_share", m.rad_unheld_share);
     add("ao_radius", m.ao_radius);
     add("radiosity_radius", m.radiosity_radius);
@@ -418,6 +439,13 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
                         against_irradiance(frame.radiosity_raw);
                     const std::optional<ErrorStats> rad_ref_blur =
                         against_irradiance(frame.radiosity_blurred);
+                    // The radiosity section's rows (ReportOptions::radiosity_frames):
+                    // radiosity does not depend on the AO method, so the first
+                    // method's rows at the renderer's radiosity tap count.
+                    const int still_frames = method_index == 0 && pattern == image_pattern &&
+                                                     n == setup.radiosity_taps && cost == image_cost
+                                                 ? options.radiosity_frames
+                                                 : 0;
 
                     if (pattern == image_pattern && n == image_taps && layers == image_layers &&
                         repeat == 0 && cost == image_cost) {
@@ -458,9 +486,10 @@ void measure_scene_rows(const SceneSetup& setup, const ReportOptions& options, R
                             count_open(frame.ao_blurred, agreed, blur_open_region).below,
                         .ao_radius = repeat_settings.ao.radius,
                         .radiosity_radius = repeat_settings.radiosity.radius,
-                        .after = run_static_frames(
-                            renderer, camera, options, truth.ambient_visibility, agreed,
-                            open_pixels, blur_open_region, against_irradiance, against_visible)};
+                        .after = run_static_frames(renderer, camera, options, still_frames,
+                                                   truth.ambient_visibility, agreed, open_pixels,
+                                                   blur_open_region, against_irradiance,
+                                                   against_visible)};
                     Row row = make_row(Row{.scene = scene_name,
                                            .pattern = pattern,
                                            .taps = n,

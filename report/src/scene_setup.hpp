@@ -25,6 +25,9 @@ struct SceneSetup {
     int image_taps = 0;
     int image_layers = 0;
     SliceCost image_cost;
+    // The tap count whose radiosity runs the still frames of
+    // ReportOptions::radiosity_frames: the run's nearest to the renderer's.
+    int radiosity_taps = 0;
     // The solid angle's tap count taken as converged: the frame-to-frame
     // change's floor row.
     int converged_taps = 0;

@@ -127,19 +127,24 @@ TEST_CASE(
     // A run of 2^m Sobol frames is a net only from a multiple of 2^m on, so a
     // repeat that started anywhere else would be stratified worse than
     // repeat 0 and widen the spread the summary compares with.
+    // The frames are the timed ones after the warmup, at least the 9 of the
+    // accumulated columns, and the radiosity section's still run.
     for (int warmup : {0, 1, 3, 20}) {
         for (int frames : {1, 2, 7, 8, 15, 16, 100, 2001}) {
-            report::ReportOptions options;
-            options.warmup = warmup;
-            options.frames = frames;
-            const int needed = std::max(9, 1 + warmup + frames);
-            const int stride = report::repeat_offset(options, 1);
-            CAPTURE(warmup, frames, stride);
-            CHECK((stride & (stride - 1)) == 0);
-            CHECK(stride >= needed);
-            CHECK(stride / 2 < needed);
-            CHECK(report::repeat_offset(options, 0) == 0);
-            CHECK(report::repeat_offset(options, 15) == 15 * stride);
+            for (int still : {0, 9, 64, 100, 1024}) {
+                report::ReportOptions options;
+                options.warmup = warmup;
+                options.frames = frames;
+                options.radiosity_frames = still;
+                const int needed = std::max({9, 1 + warmup + frames, still});
+                const int stride = report::repeat_offset(options, 1);
+                CAPTURE(warmup, frames, still, stride);
+                CHECK((stride & (stride - 1)) == 0);
+                CHECK(stride >= needed);
+                CHECK(stride / 2 < needed);
+                CHECK(report::repeat_offset(options, 0) == 0);
+                CHECK(report::repeat_offset(options, 15) == 15 * stride);
+            }
         }
     }
 }
@@ -193,6 +198,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     options.converged_taps = 128;
     options.warmup = 0;
     options.frames = 1;
+    // The radiosity section's still run, shorter than its default 64 frames
+    // for time; at 32 taps, the run's nearest to the renderer's 19.
+    options.radiosity_frames = 24;
     // Two repeats (the default), and the extras, asked for.
     REQUIRE(options.repeats == 2);
     options.stability = true;
@@ -221,6 +229,8 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     std::map<int, std::vector<double>> sampling_error;
     // Each stage's error against the ray-traced truth, summed over the rows.
     std::map<std::string, double> stage_error;
+    // The same on the rows of the still run, after 9 and after 24 frames.
+    std::map<std::string, double> still_rows_error;
     // The share of the truth no layer holds, per layer count (the same
     // truth in every row).
     std::map<int, std::set<double>> unheld_share;
@@ -238,14 +248,15 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
             method + "/" + fields[1] + "/" + fields[2] + "/" + fields[3];
         combinations.insert(combination);
         const int offset = std::stoi(fields[column.at("temporal_offset")]);
-        // repeat_offset: the 9 frames a repeat needs at --warmup 0 --frames 1,
-        // rounded up to the power of two 16 where a Sobol net starts.
-        CHECK((offset == 0 || offset == 16));
-        CHECK(report::repeat_offset(options, offset / 16) == offset);
+        // repeat_offset: the 24 frames of the still run, more than the 9 a
+        // repeat needs at --warmup 0 --frames 1, rounded up to the power of
+        // two 32 where a Sobol net starts.
+        CHECK((offset == 0 || offset == 32));
+        CHECK(report::repeat_offset(options, offset / 32) == offset);
         // The repeat's per-pixel rotation field: repeat 0 the shipped one.
         CHECK(std::stoi(fields[column.at("rotation_seed")]) ==
-              report::repeat_rotation_seed(offset / 16));
-        CHECK(report::repeat_rotation_seed(offset / 16) == offset / 16);
+              report::repeat_rotation_seed(offset / 32));
+        CHECK(report::repeat_rotation_seed(offset / 32) == offset / 32);
         repeat_error[combination][offset] = std::stod(fields[column.at("ref_raw_mae")]);
         const int taps = std::stoi(fields[2]);
         // The march gathers no taps, so it has no converged AO to compare with.
@@ -308,7 +319,23 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
         CHECK(share >= 0.0);
         CHECK(share < 1.0);
         unheld_share[std::stoi(fields[3])].insert(share);
-        for (const char* stage : {"blur", "accum"}) {
+        // The still run: on the first method's optimal rows at 32 taps only.
+        const bool still_row = method == "solid-angle" && fields[1] == "optimal" && taps == 32;
+        CHECK(fields[column.at("rad_still_frames")] == (still_row ? "24" : ""));
+        std::vector<const char*> stages = {"blur", "accum"};
+        if (still_row) {
+            stages.push_back("still");
+            for (const char* stage : {"rad_ref_accum_rel_mae", "rad_ref_still_rel_mae",
+                                      "rad_vis_accum_rel_mae", "rad_vis_still_rel_mae"})
+                still_rows_error[stage] += std::stod(fields[column.at(stage)]);
+        } else {
+            for (const char* stage : {"ref", "vis"}) {
+                for (const char* stat : {"mae", "rmse", "bias"})
+                    CHECK(
+                        fields[column.at(fmt::format("rad_{}_still_rel_{}", stage, stat))].empty());
+            }
+        }
+        for (const char* stage : stages) {
             INFO(stage);
             const double whole =
                 std::stod(fields[column.at(fmt::format("rad_ref_{}_rel_bias", stage))]);
@@ -328,6 +355,9 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     // raw gather, for AO and for radiosity alike.
     CHECK(stage_error["ref_temporal_mae"] < stage_error["ref_raw_mae"]);
     CHECK(stage_error["rad_ref_temporal_rel_mae"] < stage_error["rad_ref_raw_rel_mae"]);
+    // And 24 frames keep less of the gather's noise than 9, against either truth.
+    CHECK(still_rows_error["rad_ref_still_rel_mae"] < still_rows_error["rad_ref_accum_rel_mae"]);
+    CHECK(still_rows_error["rad_vis_still_rel_mae"] < still_rows_error["rad_vis_accum_rel_mae"]);
     CHECK(rows == 20);
     CHECK(combinations.size() == 10);
     // Each combination twice, and the other temporal offset really samples
@@ -335,7 +365,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     for (const auto& [combination, errors] : repeat_error) {
         INFO(combination);
         REQUIRE(errors.size() == 2);
-        CHECK(errors.at(0) != errors.at(16));
+        CHECK(errors.at(0) != errors.at(32));
     }
     for (const char* expected :
          {"solid-angle/optimal/4/1", "solid-angle/optimal/4/2", "solid-angle/optimal/32/1",
@@ -360,6 +390,7 @@ TEST_CASE("report: a tiny run completes with one row per combination and error f
     CHECK(count_of(json, "\"device\":") == 20);
     CHECK(json.find("\"repeats\":2,") != std::string::npos);
     CHECK(json.find("\"lengths\":\"library\",") != std::string::npos);
+    CHECK(json.find("\"radiosity_frames\":24,\"radiosity_taps\":32,") != std::string::npos);
     // Four rows of the march, and its half of the stability rows (checked below).
     const std::string rows_json = json.substr(0, json.find("\"stability\":"));
     CHECK(count_of(rows_json, "\"ao_method\":\"march\"") == 4);
@@ -535,7 +566,8 @@ TEST_CASE("report: bad options exit 2 with one line and leave no output", "[repo
           std::string("--repeats 0"), std::string("--repeats 17"),
           std::string("--ao-methods horizon"), std::string("--ao-methods march,march"),
           std::string("--ties-from no-such-verdicts.csv"), std::string("--scenes no-such-scene"),
-          std::string("--lengths metres")}) {
+          std::string("--lengths metres"), std::string("--radiosity-frames -1"),
+          std::string("--radiosity-frames 2000")}) {
         const auto run = spiral::test::run_command(
             program + " report " + arguments + " --no-plots --output '" + output.string() + "'");
         INFO(arguments << ": " << run.err);

@@ -157,6 +157,10 @@ struct ReportInfo {
     // the command line's, resolved per scene (ReportOptions::scene_lengths).
     // The rows' ao_radius and radiosity_radius columns hold the values.
     std::string lengths = "library";
+    // The still run of the radiosity section (ReportOptions::radiosity_frames):
+    // its frames (0: not run) and the tap count of the rows that ran it.
+    int radiosity_frames = 0;
+    int radiosity_taps = 0;
     double seconds = 0.0;
 };
 // {"info":{...},"rows":[...],"stability":[...],"float_vs_exact":{...}}; the
@@ -208,6 +212,15 @@ struct ReportOptions {
     // fraction of each scene's size, as the command line renders by default
     // (docs/deepgi.md, "Scene scale"); false: the library's metres.
     bool scene_lengths = false;
+    // Radiosity after a still camera's running mean of this many frames
+    // (the rad_*_still_* columns; 0: not measured), rendered for the rows
+    // of the renderer's default radiosity tap count (the --taps value
+    // nearest it), the first AO method and the image pattern, every layer
+    // count and repeat. The nine frames of the accumulated columns leave
+    // much of the gather's noise in its MAE; 64 frames are the convergence
+    // target's count (docs/radiosity.md), at which the noise left is a few
+    // percent of the irradiance.
+    int radiosity_frames = 64;
     // Extras that run only when asked (each adds minutes to a full run):
     // the numerical hard cases (stability.csv), and the exact against the
     // double-precision tau search for n = 1..float_max_n (float_vs_exact.csv;
@@ -233,7 +246,8 @@ void validate(const ReportOptions& options);
 
 // The temporal offset of repeat r: whole disjoint stretches of the Sobol
 // sequence, each as long as the frames a row renders after its cut
-// (max(9, 1 + warmup + frames)), so no two repeats share a frame's sample.
+// (max(9, 1 + warmup + frames, radiosity_frames)), so no two repeats share
+// a frame's sample.
 int repeat_offset(const ReportOptions& options, int repeat);
 
 // The per-pixel rotation seed of repeat r (RenderSettings::rotation_seed): r,
