@@ -21,14 +21,22 @@
 // dw = cos(theta_Y) dA / |v|^2, the patch behind a pixel at linear depth z_Y
 // has the area (s z_Y)^2 cos(phi) / cos(view_Y) (s: pixel side at unit
 // depth, phi: the pixel's angle off the optical axis, view_Y: between n_Y
-// and the direction to the eye), and tap i, at radius alpha_i R (R = r / (s z_X) pixels,
+// and the direction to the eye), and tap i, at radius alpha_i R (R = k r / (s z_X) pixels,
 // uniform in radius), stands for 2 pi alpha_i R^2 / N pixels. So sample (i, j)
 // covers the solid angle
 //   W_ij = 2 pi / N * w_ij,
-//   w_ij = alpha_i (z_Y / z_X)^2 cos(phi) cos(theta_Y) r^2 / (|v|^2 cos(view_Y))
+//   w_ij = alpha_i k^2 (z_Y / z_X)^2 cos(phi) cos(theta_Y) r^2 / (|v|^2 cos(view_Y))
 // and
 //   E(X) ~= 2 pi / N * sum over used samples of min(B(Y) cos(theta_X) w_ij, clamp)
 //   c(X)  = min(1, 2 / N * sum over used samples of cos(theta_X) w_ij)
+// k widens the disk from the projection of r at X's depth towards the
+// projection of the whole ball of radius r about X (exact on the optical
+// axis), since the ball's points nearer the camera than X project further
+// from X than r does at z_X: without it the floor before a wall facing the
+// camera never reaches the wall's gather. The same taps then spread over a
+// larger disk, so k is capped at 1.5, past which the measured accuracy no
+// longer gained and the noise grew (docs/radiosity.md, "The screen disk"):
+//   k = min(1 / sqrt(1 - (r / z_X)^2), 1.5), and 1.5 where z_X <= r.
 // B is radiance (albedo / pi * direct irradiance, as the reference's L), so no
 // factor of pi enters. Layers are summed, not maxed: both are surfaces that
 // send light. c is the share of the cosine-weighted hemisphere the samples
@@ -88,6 +96,7 @@ struct GatherPixel {
   vec3 normal;
   float depth;
   float radius_squared;
+  float widening_squared;  // k^2 (area method; 1 for the published)
   bool area;
 };
 
@@ -122,7 +131,8 @@ void add_sample(inout GatherSum acc, GatherPixel px, ivec2 texel, int level, vec
   float weight = 1.0;
   if (px.area) {
     float ratio = tap_depth / px.depth;
-    weight = px.radius_squared * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
+    weight = px.radius_squared * px.widening_squared *
+             area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
     acc.coverage += cos_x * weight;
   }
   acc.sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(gather.tap_clamp));
@@ -142,7 +152,14 @@ void main() {
   int max_mip = gather.max_mip;
   vec3 position = camera_position_at(vec2(pixel) + 0.5, depth, frame.internal_size, frame.camera_ray_scale);
   vec3 normal = decode_normal(texelFetch(prepared_normal, ivec3(pixel, layer), 0).xy);
-  float radius_pixels = radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
+  bool area = gather.method == DEEPGI_RADIOSITY_METHOD_AREA;
+  // The ball's projection (k above); the published method keeps the paper's disk.
+  float widening = 1.0;
+  if (area) {
+    float t = radius / depth;
+    widening = t < 1.0 ? min(inversesqrt(1.0 - t * t), 1.5) : 1.5;
+  }
+  float radius_pixels = widening * radius * (0.5 * frame.internal_size.y) / (frame.camera_ray_scale.y * depth);
   float radius_squared = radius * radius;
   // The per-frame angle (frame.cpp) follows a sequence that never repeats,
   // which the temporal filter averages over.
@@ -155,7 +172,8 @@ void main() {
   px.normal = normal;
   px.depth = depth;
   px.radius_squared = radius_squared;
-  px.area = gather.method == DEEPGI_RADIOSITY_METHOD_AREA;
+  px.widening_squared = widening * widening;
+  px.area = area;
   GatherSum acc;
   acc.sum = vec3(0.0);
   acc.coverage = 0.0;

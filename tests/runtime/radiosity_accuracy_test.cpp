@@ -117,17 +117,14 @@ spiral::test::TargetTable& targets() {
         // truth comes from"). The whole truth's misses are the light no layer
         // holds (taps past the guard band) and the crease's pixels.
         // Measured after 64 still frames (accuracy_frames), blurred. Met
-        // there and hard checks: ref-crease's MAE against both truths (0.065,
-        // 0.052) and its bias against the visible truth (0.040), and
-        // ref-board's MAE against both (0.099, 0.073; the whole truth's was
-        // 0.109 with a 1024-texel shadow map).
-        {{"area/ref-crease/relative abs(bias)/64 frames", {0.060, "measured 0.0548"}},
-         {"area/ref-board/relative abs(bias)/64 frames", {0.095, "measured 0.0866"}},
-         // ref-board keeps 0.058 against the visible truth at 1 m: half of it
-         // is the surface within the radius in 3D but outside the screen disk
-         // the taps sweep (docs/radiosity.md, "Where the error against the
-         // visible truth comes from").
-         {"area/ref-board/relative abs(bias), visible truth/64 frames", {0.064, "measured 0.0584"}},
+        // there and hard checks: ref-crease's MAE against both truths (0.058,
+        // 0.045) and its bias against both (0.042, 0.027), and ref-board's
+        // MAE against both (0.086, 0.060) and its bias against the visible
+        // truth (0.042). The last two biases were misses (0.055, 0.058) until
+        // the disk widened towards the projection of the ball of radius r
+        // (docs/radiosity.md, "The screen disk"): half of ref-board's was the
+        // surface within the radius in 3D but outside the disk the taps swept.
+        {{"area/ref-board/relative abs(bias)/64 frames", {0.078, "measured 0.0709"}},
          // With the scene's own lengths (a 4.5-unit radius, 0.75 of the
          // 6-unit wall; 17 units at 0.6 of the bounding radius, where these
          // were 0.41 and 0.53) much of the whole truth comes from surfaces
@@ -146,14 +143,18 @@ spiral::test::TargetTable& targets() {
          // what the truth does not; the hard check below follows the truth.
          // (Before the prefiltered levels the difference was 0.0695; with a
          // 1024-texel shadow map 0.0828.)
-         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.078, "measured 0.0712"}},
+         // The widened disk of docs/radiosity.md, "The screen disk", moved it
+         // further the truth's way (0.0712 before).
+         {"atrium/banner 0/floor tint, 1 layer - 2 layers/8 frames", {0.106, "measured 0.0961"}},
          // Magenta leaned toward its banner by under 1e-3 with fixed radii;
          // with the radial shift it leans away by as little: a difference
          // at the level of 8 frames' noise. (Red, banner 4, did too with the
          // R2 sequence; with the Sobol sequence it meets the target after 8
          // frames and leans away by 4e-4 after 64: the truth itself moves by
-         // 0.001 there, so red's target is at the level of noise too.)
-         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0007"}},
+         // 0.001 there, so red's target is at the level of noise too. With
+         // the widened disk both lean away after 8 frames, red by 3e-5.)
+         {"atrium/banner 3/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.0020"}},
+         {"atrium/banner 4/floor tint, 1 layer - 2 layers/8 frames", {0.005, "measured 0.00003"}},
          // The columns' sides: before the blue and the magenta banners the
          // side the camera sees turns away from the banner with two layers,
          // as the visible truth does (E0 -0.078 to E0 + E1 -0.165 before
@@ -162,7 +163,9 @@ spiral::test::TargetTable& targets() {
          // the other banners and the stone, not the strip of banner beside
          // the column. Yellow and red meet the target.
          {"atrium/banner 0/column tint, 1 layer - 2 layers/8 frames", {0.080, "measured 0.0724"}},
-         {"atrium/banner 3/column tint, 1 layer - 2 layers/8 frames", {0.032, "measured 0.0289"}}});
+         // The widened disk moved magenta's further the truth's way (0.0289
+         // before; the truth's change -0.051).
+         {"atrium/banner 3/column tint, 1 layer - 2 layers/8 frames", {0.077, "measured 0.0698"}}});
     return table;
 }
 

@@ -202,8 +202,16 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
             if (depth <= 0.0f) continue;
             const glm::vec3 position = position_at(inputs, x, y, depth);
             const glm::vec3 normal = rgb(inputs.normal[layer], x, y);
+            // The area method's disk widens towards the projection of the
+            // ball of radius r about X (on the optical axis), at most 1.5
+            // times the projection of r at X's depth: k = 1 / sqrt(1 - (r /
+            // z_X)^2).
+            const bool area = settings.method == RadiosityMethod::area;
+            const float t = settings.radius / depth;
+            const float widening =
+                !area ? 1.0f : (t < 1.0f ? std::min(1.0f / std::sqrt(1.0f - t * t), 1.5f) : 1.5f);
             const float radius_pixels =
-                settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
+                widening * settings.radius * (0.5f * float(height)) / (inputs.ray_scale.y * depth);
             const float phi = pixel_rotation_angle(std::uint32_t(x), std::uint32_t(y));
             const float c = std::cos(phi);
             const float s = std::sin(phi);
@@ -248,8 +256,8 @@ inline std::pair<FloatImage, FloatImage> reference_gather(
                         const float cos_phi = to_eye.z;
                         const float cos_view = std::max(glm::dot(tap_normal, to_eye), 0.1f);
                         const float ratio = tap_depth / depth;
-                        weight = tap.alpha * ratio * ratio * cos_phi * cos_y * radius_squared /
-                                 (vv * cos_view);
+                        weight = tap.alpha * widening * widening * ratio * ratio * cos_phi * cos_y *
+                                 radius_squared / (vv * cos_view);
                         coverage += cos_x * weight;
                     }
                     const glm::vec3 b = rgb(radiance[j][std::size_t(level)], texel.x, texel.y);

@@ -38,8 +38,12 @@ spiral::test::TargetTable& targets() {
     static spiral::test::TargetTable table(
         "temporal-convergence-targets.md",
         {
-            {"cornell/E relative RMS/16 frames", KnownMiss{0.081, at + ": 0.0734"}},
-            {"cornell/E relative RMS/64 frames", KnownMiss{0.033, at + ": 0.0298"}},
+            // The gather's disk widened towards the ball's projection
+            // (docs/radiosity.md, "The screen disk") spreads the same taps
+            // wider: cornell's E went from 0.0734 / 0.0298 to these, and
+            // warehouse's from 0.3028 / 0.0655.
+            {"cornell/E relative RMS/16 frames", KnownMiss{0.088, at + ": 0.0796"}},
+            {"cornell/E relative RMS/64 frames", KnownMiss{0.037, at + ": 0.0332"}},
             {"cornell/AO RMS / mean occlusion/16 frames", KnownMiss{0.074, at + ": 0.0673"}},
             // Warehouse at its 6 m auto radius (0.75 x its 8 m height);
             // its fine grain, on 113 flat pixels, moves with the
@@ -48,10 +52,10 @@ spiral::test::TargetTable& targets() {
             // converged image's grain from 4.97% to 1.16% and the image's
             // after 16 frames from 31.5% to 22.4%, so the ratios rose
             // (docs/radiosity.md, "Prefiltered levels").
-            {"warehouse/E relative RMS/16 frames", KnownMiss{0.33, at + ": 0.3028"}},
-            {"warehouse/E relative RMS/64 frames", KnownMiss{0.072, at + ": 0.0655"}},
-            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{21.3, at + ": 19.87"}},
-            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{6.0, at + ": 5.48"}},
+            {"warehouse/E relative RMS/16 frames", KnownMiss{0.39, at + ": 0.3545"}},
+            {"warehouse/E relative RMS/64 frames", KnownMiss{0.091, at + ": 0.0828"}},
+            {"warehouse/E fine grain / converged's/16 frames", KnownMiss{19.6, at + ": 17.82"}},
+            {"warehouse/E fine grain / converged's/64 frames", KnownMiss{7.9, at + ": 7.21"}},
         });
     return table;
 }
