@@ -140,24 +140,20 @@ StaticFrames run_static_frames(
     const int timed_end = options.warmup + options.frames;
     // Frame i of the loop is the (i + 2)-th since the cut.
     const int last = std::max({timed_end, kAccumulatedFrames - 1, still_frames - 1});
-    if (still_frames == 1) {  // the cut's frame alone
+    auto read_still = [&] {
         const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
-        after.still_frames = 1.0;
+        after.still_frames = double(still_frames);
         after.rad_ref_still = against_irradiance(irradiance);
         after.rad_vis_still = against_visible(irradiance);
-    }
+    };
+    if (still_frames == 1) read_still();  // the cut's frame alone
     for (int i = 0; i < last; ++i) {
         renderer.render(camera);
         if (i >= options.warmup && i < timed_end) {
             for (const auto& timing : renderer.last_timings())
                 after.samples[timing.pass].push_back(timing.milliseconds);
         }
-        if (still_frames > 1 && i + 2 == still_frames) {
-            const FloatImage irradiance = renderer.read_pass_output("radiosity-blurred");
-            after.still_frames = double(still_frames);
-            after.rad_ref_still = against_irradiance(irradiance);
-            after.rad_vis_still = against_visible(irradiance);
-        }
+        if (still_frames > 1 && i + 2 == still_frames) read_still();
         if (i + 2 != kAccumulatedFrames) continue;  // the cut was frame 1
         if (has_output(renderer, kTemporalAoOutput)) {
             after.ref_temporal = compare_images(renderer.read_pass_output(kTemporalAoOutput),
