@@ -96,7 +96,7 @@ struct GatherPixel {
   vec3 normal;
   float depth;
   float radius_squared;
-  float widening_squared;  // k^2 (area method; 1 for the published)
+  float area_scale;  // r^2 k^2, the factor of every area weight (w_ij above)
   bool area;
 };
 
@@ -131,8 +131,7 @@ void add_sample(inout GatherSum acc, GatherPixel px, ivec2 texel, int level, vec
   float weight = 1.0;
   if (px.area) {
     float ratio = tap_depth / px.depth;
-    weight = px.radius_squared * px.widening_squared *
-             area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
+    weight = px.area_scale * area_weight(y, tap_normal, vv, cos_y, ratio * ratio, alpha);
     acc.coverage += cos_x * weight;
   }
   acc.sum += min(texelFetch(prepared_radiance, at, level).rgb * (cos_x * weight), vec3(gather.tap_clamp));
@@ -172,7 +171,7 @@ void main() {
   px.normal = normal;
   px.depth = depth;
   px.radius_squared = radius_squared;
-  px.widening_squared = widening * widening;
+  px.area_scale = radius_squared * (widening * widening);
   px.area = area;
   GatherSum acc;
   acc.sum = vec3(0.0);
